@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# README command 1: set up, build, and run a scene end to end (default: the 3-D Sedov blast),
+# writing HDF5 dumps, the XDMF series and summary.json into output/<scene>/.
+#   bash ci/run-scene.sh [configs/SCENE.yaml] [-- extra minipagosa options]
+# MINIPAGOSA_RANKS (default 2) MPI ranks, MINIPAGOSA_THREADS (default 1) OpenMP threads each.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${MINIPAGOSA_BUILD_DIR:-${here}/build}"
+scene="${1:-${here}/configs/sedov.yaml}"
+shift || true
+[ "${1:-}" = "--" ] && shift
+bash "${here}/ci/build.sh"
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMP_NUM_THREADS="${MINIPAGOSA_THREADS:-1}" OMP_PROC_BIND=false
+cd "${here}"
+mpiexec -np "${MINIPAGOSA_RANKS:-2}" --oversubscribe "${build}/minipagosa" "${scene}" "$@"

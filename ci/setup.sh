@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# Installs what minipagosa needs on Debian 12 and reuses what is already there.
+#   - Debian packages: Open MPI, parallel HDF5, yaml-cpp, CLI11, GoogleTest, Google Benchmark,
+#     Python numpy/h5py/matplotlib (only the missing ones are installed).
+#   - Kokkos with the OpenMP and Serial backends, built from packages/kokkos of Debian's
+#     `trilinos` source package into a cache prefix outside the repository (DESIGN.md §1).
+#     Debian's binary Trilinos Kokkos is Serial-only and is never used.
+# With Kokkos_ROOT set in the environment, that Kokkos is used instead and nothing is built.
+# Prints the Kokkos prefix on its last line as `KOKKOS_ROOT=<path>`.
+set -euo pipefail
+
+log() { echo "[setup] $*" >&2; }
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+
+packages=(
+  g++ cmake make dpkg-dev xz-utils
+  libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
+  libyaml-cpp-dev libcli11-dev libgtest-dev libbenchmark-dev
+  python3 python3-numpy python3-h5py python3-matplotlib
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+apt_updated=0
+if [ ${#missing[@]} -gt 0 ]; then
+  log "installing Debian packages: ${missing[*]}"
+  $SUDO apt-get update -q >&2
+  apt_updated=1
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends \
+    "${missing[@]}" >&2
+else
+  log "Debian packages: all present"
+fi
+
+# ---- Kokkos -------------------------------------------------------------------------------
+if [ -n "${Kokkos_ROOT:-}" ]; then
+  log "using Kokkos_ROOT=${Kokkos_ROOT} from the environment"
+  echo "KOKKOS_ROOT=${Kokkos_ROOT}"
+  exit 0
+fi
+
+cache="${MINIPAGOSA_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/minipagosa}"
+prefix="${cache}/kokkos-trilinos-openmp"
+if [ -f "${prefix}/lib/cmake/Kokkos/KokkosConfig.cmake" ] || \
+   [ -f "${prefix}/lib64/cmake/Kokkos/KokkosConfig.cmake" ]; then
+  log "Kokkos (OpenMP+Serial) found in ${prefix}"
+  echo "KOKKOS_ROOT=${prefix}"
+  exit 0
+fi
+
+log "building Kokkos (OpenMP+Serial) from Debian's trilinos source package into ${prefix}"
+work="${cache}/kokkos-build"
+rm -rf "${work}"
+mkdir -p "${work}"
+
+# A deb-src entry derived from the machine's own apt sources, so `apt-get source` works.
+srcfile=/etc/apt/sources.list.d/minipagosa-deb-src.sources
+if ! apt-get source --download-only --print-uris trilinos >/dev/null 2>&1; then
+  if [ -f /etc/apt/sources.list.d/debian.sources ]; then
+    sed -e 's/^Types:.*/Types: deb-src/' /etc/apt/sources.list.d/debian.sources \
+      | $SUDO tee "${srcfile}" >/dev/null
+  elif [ -f /etc/apt/sources.list ]; then
+    grep -E '^deb ' /etc/apt/sources.list | sed -e 's/^deb /deb-src /' \
+      | $SUDO tee /etc/apt/sources.list.d/minipagosa-deb-src.list >/dev/null
+  else
+    log "no apt sources found to derive a deb-src entry from"; exit 1
+  fi
+  $SUDO apt-get update -q >&2
+elif [ $apt_updated = 0 ]; then
+  :
+fi
+
+(cd "${work}" && apt-get source --download-only -q trilinos >&2)
+orig=$(ls "${work}"/trilinos_*.orig.tar.* | head -n 1)
+log "extracting packages/kokkos from $(basename "${orig}")"
+top=$( (tar -tf "${orig}" || true) 2>/dev/null | head -n 1 | cut -d/ -f1)
+tar -xf "${orig}" -C "${work}" "${top}/packages/kokkos"
+src="${work}/${top}/packages/kokkos"
+
+jobs=$(nproc)
+cmake -S "${src}" -B "${work}/build" \
+  -DCMAKE_BUILD_TYPE=Release \
+  -DCMAKE_CXX_COMPILER=g++ \
+  -DCMAKE_CXX_STANDARD=17 \
+  -DCMAKE_INSTALL_PREFIX="${prefix}" \
+  -DCMAKE_POSITION_INDEPENDENT_CODE=ON \
+  -DKokkos_ENABLE_SERIAL=ON \
+  -DKokkos_ENABLE_OPENMP=ON \
+  -DKokkos_ENABLE_TESTS=OFF \
+  -DKokkos_ENABLE_EXAMPLES=OFF >&2
+cmake --build "${work}/build" -j "${jobs}" >&2
+cmake --install "${work}/build" >&2
+rm -rf "${work}"
+log "Kokkos installed in ${prefix}"
+echo "KOKKOS_ROOT=${prefix}"
