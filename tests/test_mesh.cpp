@@ -1,0 +1,350 @@
+// Mesh decomposition: the owned blocks of all ranks tile the global box, every block is thick
+// enough for the ghost layers, the geometry agrees with the offsets, and bad meshes are refused.
+// Every assertion is collective: errors are counted locally, summed over the ranks, and each
+// rank checks the total, so a failure on one rank fails the test everywhere.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/error.hpp"
+#include "mesh/mesh.hpp"
+
+namespace {
+
+using mp::BoundaryKind;
+using mp::Centering;
+using mp::Mesh;
+using mp::MeshSpec;
+using mp::Region;
+
+int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int world_size() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// Counts local failures and prints the first few, with the rank, to stderr.
+struct Errors {
+  std::string what;
+  long count = 0;
+  explicit Errors(std::string w) : what(std::move(w)) {}
+  template <class... A>
+  void fail(const char* fmt, A... args) {
+    if (count++ < 8) {
+      std::fprintf(stderr, "[rank %d] %s: ", world_rank(), what.c_str());
+      std::fprintf(stderr, fmt, args...);
+      std::fprintf(stderr, "\n");
+    }
+  }
+  void fail(const char* msg) { fail("%s", msg); }
+  void check(bool ok, const char* msg) {
+    if (!ok) fail(msg);
+  }
+  long total() const {
+    long t = 0;
+    MPI_Allreduce(&count, &t, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+    return t;
+  }
+};
+
+std::string name_of(const MeshSpec& s) {
+  return std::to_string(s.cells[0]) + "x" + std::to_string(s.cells[1]) + "x" +
+         std::to_string(s.cells[2]);
+}
+
+// What one rank reports about its block, gathered on every rank.
+struct BlockInfo {
+  int coords[3], offset[3], nl[3], neighbor[3][2];
+};
+
+void check_decomposition(const MeshSpec& spec) {
+  SCOPED_TRACE(name_of(spec));
+  const int np = world_size();
+  Errors e("decomposition " + name_of(spec));
+  Mesh mesh(spec, MPI_COMM_WORLD);
+
+  e.check(mesh.nranks() == np, "nranks != world size");
+  e.check(mesh.dims()[0] * mesh.dims()[1] * mesh.dims()[2] == np, "dims product != nranks");
+  for (int d = 0; d < 3; ++d) {
+    if (mesh.owned_cells(d) < Mesh::ng)
+      e.fail("axis %d owns %d cells < ng=%d", d, mesh.owned_cells(d), Mesh::ng);
+    if (mesh.global_cells(d) != spec.cells[d]) e.fail("axis %d global_cells wrong", d);
+  }
+
+  // Gather every rank's block (in the mesh communicator's rank order).
+  BlockInfo mine{};
+  for (int d = 0; d < 3; ++d) {
+    mine.coords[d] = mesh.coords()[d];
+    mine.offset[d] = mesh.offset(d);
+    mine.nl[d] = mesh.owned_cells(d);
+    for (int s = 0; s < 2; ++s) mine.neighbor[d][s] = mesh.neighbor(d, s);
+  }
+  const int nint = static_cast<int>(sizeof(BlockInfo) / sizeof(int));
+  std::vector<BlockInfo> all(np);
+  MPI_Allgather(&mine, nint, MPI_INT, all.data(), nint, MPI_INT, mesh.comm());
+
+  // Sum of owned cells equals the global count.
+  long long owned = mesh.owned_cell_count(), sum = 0;
+  MPI_Allreduce(&owned, &sum, 1, MPI_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+  if (sum != mesh.global_cell_count())
+    e.fail("sum of owned cells %lld != global %lld", sum, mesh.global_cell_count());
+
+  // Each coordinate tuple appears exactly once, and the block at coordinate c along d has one
+  // offset and size, shared by every rank in that slab; offsets are contiguous from 0 to N.
+  const auto dims = mesh.dims();
+  std::vector<int> seen(np, 0);
+  for (int r = 0; r < np; ++r) {
+    const auto& b = all[r];
+    bool in = true;
+    for (int d = 0; d < 3; ++d) in = in && b.coords[d] >= 0 && b.coords[d] < dims[d];
+    if (!in) {
+      e.fail("rank %d coords out of range", r);
+      continue;
+    }
+    seen[b.coords[0] + dims[0] * (b.coords[1] + dims[1] * b.coords[2])]++;
+  }
+  for (int i = 0; i < np; ++i)
+    if (seen[i] != 1) e.fail("coordinate tuple %d held by %d ranks", i, seen[i]);
+
+  for (int d = 0; d < 3; ++d) {
+    std::vector<int> off(dims[d], -1), cnt(dims[d], -1);
+    for (int r = 0; r < np; ++r) {
+      const auto& b = all[r];
+      const int c = b.coords[d];
+      if (c < 0 || c >= dims[d]) continue;
+      if (off[c] < 0) {
+        off[c] = b.offset[d];
+        cnt[c] = b.nl[d];
+      } else if (off[c] != b.offset[d] || cnt[c] != b.nl[d]) {
+        e.fail("axis %d coord %d: rank %d has offset/count %d/%d, another %d/%d", d, c, r,
+               b.offset[d], b.nl[d], off[c], cnt[c]);
+      }
+    }
+    int expect = 0;
+    int lo = spec.cells[d], hi = 0;
+    for (int c = 0; c < dims[d]; ++c) {
+      if (off[c] != expect) e.fail("axis %d coord %d offset %d, expected %d", d, c, off[c], expect);
+      if (cnt[c] < Mesh::ng) e.fail("axis %d coord %d has %d cells", d, c, cnt[c]);
+      lo = std::min(lo, cnt[c]);
+      hi = std::max(hi, cnt[c]);
+      expect = off[c] + cnt[c];
+    }
+    if (expect != spec.cells[d])
+      e.fail("axis %d blocks end at %d, not %d", d, expect, spec.cells[d]);
+    if (hi - lo > 1) e.fail("axis %d blocks unbalanced: %d..%d cells", d, lo, hi);
+  }
+
+  // Neighbours: the rank at coords +-1 along d, wrapped when periodic, MPI_PROC_NULL at a wall.
+  for (int d = 0; d < 3; ++d) {
+    const bool periodic = spec.bc[d][0] == BoundaryKind::Periodic;
+    for (int s = 0; s < 2; ++s) {
+      int c[3] = {mine.coords[0], mine.coords[1], mine.coords[2]};
+      c[d] += s == 0 ? -1 : 1;
+      int expect = MPI_PROC_NULL;
+      if (periodic || (c[d] >= 0 && c[d] < dims[d])) {
+        c[d] = (c[d] + dims[d]) % dims[d];
+        for (int r = 0; r < np; ++r)
+          if (all[r].coords[0] == c[0] && all[r].coords[1] == c[1] && all[r].coords[2] == c[2])
+            expect = r;
+      }
+      if (mesh.neighbor(d, s) != expect)
+        e.fail("neighbor(%d,%d) = %d, expected %d", d, s, mesh.neighbor(d, s), expect);
+      if (mesh.physical_boundary(d, s) != (expect == MPI_PROC_NULL))
+        e.fail("physical_boundary(%d,%d) wrong", d, s);
+      if (mesh.boundary(d, s) != spec.bc[d][s]) e.fail("boundary(%d,%d) wrong", d, s);
+    }
+  }
+
+  // Extents, ranges and policies.
+  for (int d = 0; d < 3; ++d) {
+    const int nl = mesh.owned_cells(d), ng = Mesh::ng;
+    e.check(mesh.extent(Centering::Cell, d) == nl + 2 * ng, "cell extent");
+    e.check(mesh.extent(Centering::Node, d) == nl + 2 * ng + 1, "node extent");
+    const auto co = mesh.range(Centering::Cell, Region::Owned, d);
+    const auto ca = mesh.range(Centering::Cell, Region::All, d);
+    const auto no = mesh.range(Centering::Node, Region::Owned, d);
+    const auto na = mesh.range(Centering::Node, Region::All, d);
+    e.check(co[0] == ng && co[1] == ng + nl, "owned cell range");
+    e.check(ca[0] == 0 && ca[1] == nl + 2 * ng, "all cell range");
+    e.check(no[0] == ng && no[1] == ng + nl + 1, "owned node range");
+    e.check(na[0] == 0 && na[1] == nl + 2 * ng + 1, "all node range");
+    const auto f = mesh.new_field("f", Centering::Node);
+    e.check(static_cast<int>(f.extent(d)) == mesh.extent(Centering::Node, d), "field extent");
+    const auto p = mesh.cells(Region::Owned);
+    e.check(p.m_lower[d] == co[0] && p.m_upper[d] == co[1], "owned cell policy");
+    const auto q = mesh.nodes(Region::All);
+    e.check(q.m_lower[d] == na[0] && q.m_upper[d] == na[1], "all node policy");
+    const auto pp = mesh.cells_padded(1);
+    e.check(pp.m_lower[d] == ng - 1 && pp.m_upper[d] == ng + nl + 1, "padded policy");
+  }
+
+  // Geometry, computed here independently from the spec and the gathered offsets.
+  const mp::Geometry g = mesh.geometry();
+  e.check(g.ng == Mesh::ng, "geometry ng");
+  for (int d = 0; d < 3; ++d) {
+    const double dx = (spec.hi[d] - spec.lo[d]) / spec.cells[d];
+    const double tol = 1e-5 * (spec.hi[d] - spec.lo[d]);
+    if (g.offset[d] != mesh.offset(d) || g.nl[d] != mesh.owned_cells(d))
+      e.fail("geometry offset/nl axis %d", d);
+    if (std::abs(double(mesh.dx(d)) - dx) > tol) e.fail("dx axis %d", d);
+    if (std::abs(double(g.cell_volume()) - (spec.hi[0] - spec.lo[0]) * (spec.hi[1] - spec.lo[1]) *
+                                               (spec.hi[2] - spec.lo[2]) /
+                                               double(mesh.global_cell_count())) > 1e-6)
+      e.fail("cell volume");
+    for (int i = 0; i < mesh.extent(Centering::Node, d); ++i) {
+      const int gi = mine.offset[d] + i - Mesh::ng;
+      if (g.global_index(d, i) != gi)
+        e.fail("global_index(%d,%d) = %d, expected %d", d, i, g.global_index(d, i), gi);
+      const double node = spec.lo[d] + gi * dx;
+      if (std::abs(double(g.node_coord(d, i)) - node) > tol)
+        e.fail("node_coord(%d,%d) = %g, expected %g", d, i, double(g.node_coord(d, i)), node);
+      if (i < mesh.extent(Centering::Cell, d)) {
+        const double center = spec.lo[d] + (gi + 0.5) * dx;
+        if (std::abs(double(g.cell_center(d, i)) - center) > tol)
+          e.fail("cell_center(%d,%d) = %g, expected %g", d, i, double(g.cell_center(d, i)), center);
+      }
+    }
+    // The owned range spans exactly [lo + offset dx, lo + (offset + nl) dx]; the last block
+    // ends on the upper corner.
+    const int first = Mesh::ng, last = Mesh::ng + mesh.owned_cells(d);
+    if (mesh.offset(d) == 0 && std::abs(double(g.node_coord(d, first)) - spec.lo[d]) > tol)
+      e.fail("first block does not start at lo on axis %d", d);
+    if (mesh.offset(d) + mesh.owned_cells(d) == spec.cells[d] &&
+        std::abs(double(g.node_coord(d, last)) - spec.hi[d]) > tol)
+      e.fail("last block does not end at hi on axis %d", d);
+  }
+  EXPECT_FALSE(mesh.describe().empty());
+  EXPECT_EQ(e.total(), 0) << e.what;
+}
+
+MeshSpec make(int nx, int ny, int nz) {
+  MeshSpec s;
+  s.cells = {{nx, ny, nz}};
+  s.lo = {{-1.0, 0.0, 2.5}};
+  s.hi = {{1.0, 3.0, 3.0}};
+  return s;
+}
+
+TEST(Mesh, TilesGlobalBox) {
+  for (const auto& n : std::vector<std::array<int, 3>>{
+           {{17, 10, 9}}, {{8, 8, 8}}, {{40, 4, 4}}, {{4, 40, 4}}, {{5, 6, 41}}, {{13, 11, 9}}})
+    check_decomposition(make(n[0], n[1], n[2]));
+}
+
+TEST(Mesh, TilesWithPeriodicAndMixedBoundaries) {
+  MeshSpec s = make(17, 10, 9);
+  s.bc[0] = {{BoundaryKind::Periodic, BoundaryKind::Periodic}};
+  s.bc[1] = {{BoundaryKind::Reflective, BoundaryKind::Outflow}};
+  s.bc[2] = {{BoundaryKind::Periodic, BoundaryKind::Periodic}};
+  check_decomposition(s);
+  s.bc[0] = {{BoundaryKind::Outflow, BoundaryKind::Outflow}};
+  s.bc[1] = {{BoundaryKind::Periodic, BoundaryKind::Periodic}};
+  s.bc[2] = {{BoundaryKind::Outflow, BoundaryKind::Reflective}};
+  check_decomposition(s);
+}
+
+TEST(Mesh, TilesWithUserRanks) {
+  // All ranks along one axis, the thinnest legal split (2 cells, the first block 3).
+  const int np = world_size();
+  for (int d = 0; d < 3; ++d) {
+    MeshSpec s = make(6, 5, 4);
+    s.cells[d] = 2 * np + 1;
+    s.ranks = {{1, 1, 1}};
+    s.ranks[d] = np;
+    check_decomposition(s);
+    Mesh m(s, MPI_COMM_WORLD);
+    Errors e("user ranks");
+    for (int a = 0; a < 3; ++a)
+      if (m.dims()[a] != (a == d ? np : 1)) e.fail("dims[%d] = %d", a, m.dims()[a]);
+    EXPECT_EQ(e.total(), 0);
+  }
+}
+
+// Runs `make_mesh` and expects InputError whose message contains `needle`, on every rank.
+template <class F>
+void expect_input_error(F make_mesh, const std::string& needle, const std::string& what) {
+  Errors e(what);
+  try {
+    make_mesh();
+    e.fail("no exception");
+  } catch (const mp::InputError& ex) {
+    const std::string msg = ex.what();
+    if (msg.find(needle) == std::string::npos)
+      e.fail("message '%s' does not mention '%s'", msg.c_str(), needle.c_str());
+  } catch (const std::exception& ex) {
+    e.fail("wrong exception type: %s", ex.what());
+  }
+  EXPECT_EQ(e.total(), 0) << what;
+}
+
+TEST(Mesh, RefusesTooSmallForRanks) {
+  const int np = world_size();
+  if (np == 1) {
+    // One rank still needs ng cells on every axis for the ghost-layer stencils.
+    for (int d = 0; d < 3; ++d) {
+      MeshSpec s = make(5, 6, 7);
+      s.cells[d] = 1;
+      expect_input_error([&] { Mesh m(s, MPI_COMM_WORLD); }, std::string("along ") + "xyz"[d],
+                         "1-cell axis");
+    }
+  } else {
+    // 3 cells on every axis: whichever axis gets >= 2 ranks has a block of 1 cell.
+    expect_input_error([&] { Mesh m(make(3, 3, 3), MPI_COMM_WORLD); }, "along ", "3x3x3");
+    // Forced decomposition: np ranks along d with 2*np - 1 cells leaves some block 1 cell thick.
+    for (int d = 0; d < 3; ++d) {
+      MeshSpec s = make(40, 40, 40);
+      s.cells[d] = 2 * np - 1;
+      s.ranks = {{1, 1, 1}};
+      s.ranks[d] = np;
+      expect_input_error([&] { Mesh m(s, MPI_COMM_WORLD); }, std::string("along ") + "xyz"[d],
+                         "forced split");
+    }
+  }
+  // A long thin box whose short axis is too thin for any rank count.
+  for (int d = 0; d < 3; ++d) {
+    MeshSpec s = make(64, 64, 64);
+    s.cells[d] = 1;
+    expect_input_error([&] { Mesh m(s, MPI_COMM_WORLD); }, std::string("along ") + "xyz"[d],
+                       "thin axis");
+  }
+}
+
+TEST(Mesh, RefusesBadSpecs) {
+  for (int d = 0; d < 3; ++d) {
+    for (int s = 0; s < 2; ++s) {
+      MeshSpec spec = make(16, 16, 16);
+      spec.bc[d][s] = BoundaryKind::Periodic;
+      spec.bc[d][1 - s] = s == 0 ? BoundaryKind::Reflective : BoundaryKind::Outflow;
+      expect_input_error([&] { Mesh m(spec, MPI_COMM_WORLD); }, std::string("axis ") + "xyz"[d],
+                         "periodic on one face");
+    }
+    MeshSpec spec = make(16, 16, 16);
+    spec.cells[d] = 0;
+    expect_input_error([&] { Mesh m(spec, MPI_COMM_WORLD); }, std::string("along ") + "xyz"[d],
+                       "zero cells");
+    spec = make(16, 16, 16);
+    spec.hi[d] = spec.lo[d];
+    expect_input_error([&] { Mesh m(spec, MPI_COMM_WORLD); }, std::string("along ") + "xyz"[d],
+                       "empty box");
+  }
+}
+
+TEST(Mesh, BoundaryNames) {
+  EXPECT_STREQ(mp::to_string(BoundaryKind::Reflective), "reflective");
+  EXPECT_STREQ(mp::to_string(BoundaryKind::Outflow), "outflow");
+  EXPECT_STREQ(mp::to_string(BoundaryKind::Periodic), "periodic");
+}
+
+}  // namespace
