@@ -1,0 +1,285 @@
+#include "config/deck.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+namespace mp {
+
+int edit_distance(const std::string& a, const std::string& b) {
+  std::vector<int> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    int diag = row[0];
+    row[0] = static_cast<int>(i);
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const int up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+  std::string best;
+  int best_d = 1 << 30;
+  for (const auto& c : candidates) {
+    const int d = edit_distance(word, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
+  return s;
+}
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+std::string DeckNode::where() const {
+  // A value given on the command line is reported as such, not by a line of the file.
+  for (std::string p = path_;; p = p.substr(0, p.rfind('.'))) {
+    const auto it = overrides_->find(p);
+    if (it != overrides_->end()) return "--set " + it->second;
+    if (p.find('.') == std::string::npos) break;
+  }
+  const YAML::Mark m = node_.Mark();
+  // A node with no place in the file was made by an override deeper than its own path.
+  if (m.line < 0)
+    for (const auto& kv : *overrides_)
+      if (kv.first.compare(0, path_.size() + 1, path_ + ".") == 0) return "--set " + kv.second;
+  std::ostringstream os;
+  os << *file_;
+  if (m.line >= 0) os << ":" << m.line + 1 << ":" << m.column + 1;
+  return os.str();
+}
+
+void DeckNode::fail(const std::string& message) const {
+  std::ostringstream os;
+  os << where() << ": key '" << (path_.empty() ? "<top>" : path_) << "': " << message;
+  throw InputError(os.str());
+}
+
+DeckNode DeckNode::sub(const YAML::Node& n, const std::string& key) const {
+  return DeckNode(n, path_.empty() ? key : path_ + "." + key, file_, overrides_);
+}
+
+void DeckNode::expect_keys(const std::vector<std::string>& allowed) const {
+  if (!node_.IsMap()) fail("expected a map with keys from: " + join(allowed));
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    const std::string key = it->first.as<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+    DeckNode bad(it->first, path_.empty() ? key : path_ + "." + key, file_, overrides_);
+    bad.fail("unknown key '" + key + "'; did you mean '" + nearest(key, allowed) +
+             "'? (allowed: " + join(allowed) + ")");
+  }
+}
+
+bool DeckNode::has(const std::string& key) const {
+  return node_.IsMap() && node_[key] && !node_[key].IsNull();
+}
+
+DeckNode DeckNode::child(const std::string& key) const {
+  if (!node_.IsMap()) fail("expected a map holding '" + key + "'");
+  // Reported at the enclosing map, under the missing key's own full path.
+  if (!has(key)) sub(node_, key).fail("missing required key '" + key + "'");
+  return sub(node_[key], key);
+}
+
+DeckNode DeckNode::operator[](std::size_t index) const {
+  if (!node_.IsSequence()) fail("expected a list");
+  if (index >= node_.size()) fail("list has no element " + std::to_string(index));
+  return sub(node_[index], std::to_string(index));
+}
+
+std::vector<DeckNode> DeckNode::items() const {
+  if (!node_.IsSequence()) fail("expected a list");
+  std::vector<DeckNode> out;
+  for (std::size_t i = 0; i < node_.size(); ++i) out.push_back((*this)[i]);
+  return out;
+}
+
+double DeckNode::as_real(double lo, double hi) const {
+  if (!node_.IsScalar()) fail("expected a number");
+  double v = 0;
+  try {
+    v = node_.as<double>();
+  } catch (const YAML::Exception&) {
+    fail("expected a number, got '" + node_.Scalar() + "'");
+  }
+  if (!std::isfinite(v)) fail("expected a finite number, got '" + node_.Scalar() + "'");
+  if (v < lo || v > hi)
+    fail("value " + node_.Scalar() + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
+  return v;
+}
+
+long DeckNode::as_int(long lo, long hi) const {
+  if (!node_.IsScalar()) fail("expected an integer");
+  long v = 0;
+  try {
+    v = node_.as<long>();
+  } catch (const YAML::Exception&) {
+    fail("expected an integer, got '" + node_.Scalar() + "'");
+  }
+  if (v < lo || v > hi)
+    fail("value " + node_.Scalar() + " is out of range [" + std::to_string(lo) + ", " +
+         std::to_string(hi) + "]");
+  return v;
+}
+
+std::string DeckNode::as_string() const {
+  if (!node_.IsScalar()) fail("expected a string");
+  return node_.Scalar();
+}
+
+double DeckNode::get_real(const std::string& key, double lo, double hi) const {
+  return child(key).as_real(lo, hi);
+}
+double DeckNode::get_real(const std::string& key, double lo, double hi, double fallback) const {
+  return has(key) ? get_real(key, lo, hi) : fallback;
+}
+long DeckNode::get_int(const std::string& key, long lo, long hi) const {
+  return child(key).as_int(lo, hi);
+}
+long DeckNode::get_int(const std::string& key, long lo, long hi, long fallback) const {
+  return has(key) ? get_int(key, lo, hi) : fallback;
+}
+bool DeckNode::get_bool(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const DeckNode n = child(key);
+  if (!n.node_.IsScalar()) n.fail("expected true or false");
+  try {
+    return n.node_.as<bool>();
+  } catch (const YAML::Exception&) {
+    n.fail("expected true or false, got '" + n.node_.Scalar() + "'");
+  }
+}
+std::string DeckNode::get_string(const std::string& key) const {
+  return child(key).as_string();
+}
+std::string DeckNode::get_string(const std::string& key, const std::string& fallback) const {
+  return has(key) ? get_string(key) : fallback;
+}
+std::string DeckNode::get_enum(const std::string& key,
+                               const std::vector<std::string>& allowed) const {
+  const DeckNode n = child(key);
+  const std::string v = n.as_string();
+  if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
+    n.fail("'" + v + "' is not one of: " + join(allowed) + " (did you mean '" +
+           nearest(v, allowed) + "'?)");
+  return v;
+}
+std::string DeckNode::get_enum(const std::string& key, const std::vector<std::string>& allowed,
+                               const std::string& fallback) const {
+  return has(key) ? get_enum(key, allowed) : fallback;
+}
+std::array<double, 3> DeckNode::get_real3(const std::string& key, double lo, double hi) const {
+  const DeckNode n = child(key);
+  if (!n.is_sequence() || n.size() != 3) n.fail("expected a list of 3 numbers [x, y, z]");
+  return {n[0].as_real(lo, hi), n[1].as_real(lo, hi), n[2].as_real(lo, hi)};
+}
+std::array<double, 3> DeckNode::get_real3(const std::string& key, double lo, double hi,
+                                          std::array<double, 3> fallback) const {
+  return has(key) ? get_real3(key, lo, hi) : fallback;
+}
+std::array<int, 3> DeckNode::get_int3(const std::string& key, long lo, long hi) const {
+  const DeckNode n = child(key);
+  if (!n.is_sequence() || n.size() != 3) n.fail("expected a list of 3 integers [x, y, z]");
+  return {static_cast<int>(n[0].as_int(lo, hi)), static_cast<int>(n[1].as_int(lo, hi)),
+          static_cast<int>(n[2].as_int(lo, hi))};
+}
+std::array<int, 3> DeckNode::get_int3(const std::string& key, long lo, long hi,
+                                      std::array<int, 3> fallback) const {
+  return has(key) ? get_int3(key, lo, hi) : fallback;
+}
+
+namespace {
+void set_path(YAML::Node node, const std::vector<std::string>& keys, std::size_t i,
+              const YAML::Node& value, const std::string& what) {
+  const std::string& key = keys[i];
+  const bool index = !key.empty() && std::all_of(key.begin(), key.end(), ::isdigit);
+  if (node.IsSequence() && index) {
+    const std::size_t n = std::stoul(key);
+    if (n >= node.size()) throw InputError("--set " + what + ": list has no element " + key);
+    if (i + 1 == keys.size()) {
+      node[n] = value;
+      return;
+    }
+    set_path(node[n], keys, i + 1, value, what);
+    return;
+  }
+  if (!node.IsMap() && !node.IsNull())
+    throw InputError("--set " + what + ": '" + key + "' is not inside a map");
+  if (i + 1 == keys.size()) {
+    node[key] = value;
+    return;
+  }
+  if (!node[key] || node[key].IsNull() || node[key].IsScalar())
+    node[key] = YAML::Node(YAML::NodeType::Map);
+  set_path(node[key], keys, i + 1, value, what);
+}
+}  // namespace
+
+Deck Deck::parse(const std::string& text, const std::string& name,
+                 const std::vector<std::string>& overrides) {
+  Deck d;
+  d.file_ = std::make_shared<const std::string>(name);
+  try {
+    d.root_ = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    std::ostringstream os;
+    os << name << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
+       << ": YAML syntax error: " << e.msg;
+    throw InputError(os.str());
+  }
+  if (!d.root_.IsMap()) throw InputError(name + ": a scene deck must be a YAML map");
+  auto ov = std::make_shared<std::map<std::string, std::string>>();
+  for (const auto& o : overrides) {
+    const auto eq = o.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set " + o + ": expected key=value (for example mesh.cells=[64,64,64])");
+    const std::string key = o.substr(0, eq);
+    YAML::Node value;
+    try {
+      value = YAML::Load(o.substr(eq + 1));
+    } catch (const YAML::ParserException& e) {
+      throw InputError("--set " + o + ": YAML syntax error in the value: " + e.msg);
+    }
+    std::vector<std::string> keys;
+    std::stringstream ss(key);
+    for (std::string part; std::getline(ss, part, '.');) {
+      if (part.empty()) throw InputError("--set " + o + ": empty key component");
+      keys.push_back(part);
+    }
+    set_path(d.root_, keys, 0, value, o);
+    (*ov)[key] = o;
+  }
+  d.overrides_ = ov;
+  return d;
+}
+
+Deck Deck::load(const std::string& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file + ": cannot open the scene deck");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse(ss.str(), file, overrides);
+}
+
+DeckNode Deck::root() const {
+  return DeckNode(root_, "", file_, overrides_);
+}
+
+}  // namespace mp

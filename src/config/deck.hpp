@@ -1,0 +1,96 @@
+// Strict reading of YAML scene decks (STYLE.md practice 6). Every value is read through a
+// DeckNode, which knows the file and line it came from; every map lists the keys it accepts,
+// so a typo is an error naming file:line, the key path, and the nearest valid key.
+#pragma once
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+
+namespace mp {
+
+class DeckNode {
+ public:
+  DeckNode(YAML::Node node, std::string path, std::shared_ptr<const std::string> file,
+           std::shared_ptr<const std::map<std::string, std::string>> overrides)
+      : node_(std::move(node)),
+        path_(std::move(path)),
+        file_(std::move(file)),
+        overrides_(std::move(overrides)) {}
+
+  const std::string& path() const { return path_; }
+  bool is_map() const { return node_.IsMap(); }
+  bool is_sequence() const { return node_.IsSequence(); }
+  bool is_scalar() const { return node_.IsScalar(); }
+  std::size_t size() const { return node_.size(); }
+
+  // Rejects keys not in `allowed` (with the nearest allowed key suggested); the node must be a map.
+  void expect_keys(const std::vector<std::string>& allowed) const;
+  bool has(const std::string& key) const;
+  DeckNode child(const std::string& key) const;  // required
+  DeckNode operator[](std::size_t index) const;  // sequence element
+  std::vector<DeckNode> items() const;           // sequence elements (must be a sequence)
+
+  // Scalars, checked for type and range.
+  double get_real(const std::string& key, double lo, double hi) const;
+  double get_real(const std::string& key, double lo, double hi, double fallback) const;
+  long get_int(const std::string& key, long lo, long hi) const;
+  long get_int(const std::string& key, long lo, long hi, long fallback) const;
+  bool get_bool(const std::string& key, bool fallback) const;
+  std::string get_string(const std::string& key) const;
+  std::string get_string(const std::string& key, const std::string& fallback) const;
+  // One of `allowed`; the error lists them all.
+  std::string get_enum(const std::string& key, const std::vector<std::string>& allowed) const;
+  std::string get_enum(const std::string& key, const std::vector<std::string>& allowed,
+                       const std::string& fallback) const;
+  std::array<double, 3> get_real3(const std::string& key, double lo, double hi) const;
+  std::array<double, 3> get_real3(const std::string& key, double lo, double hi,
+                                  std::array<double, 3> fallback) const;
+  std::array<int, 3> get_int3(const std::string& key, long lo, long hi) const;
+  std::array<int, 3> get_int3(const std::string& key, long lo, long hi,
+                              std::array<int, 3> fallback) const;
+
+  // This node's own value (for sequence items and scalars).
+  double as_real(double lo, double hi) const;
+  long as_int(long lo, long hi) const;
+  std::string as_string() const;
+
+  // "file:line:col: key 'a.b.c': message" (or "--set a.b.c=...: message" for overrides).
+  [[noreturn]] void fail(const std::string& message) const;
+  std::string where() const;
+
+ private:
+  DeckNode sub(const YAML::Node& n, const std::string& key) const;
+  YAML::Node node_;
+  std::string path_;
+  std::shared_ptr<const std::string> file_;
+  std::shared_ptr<const std::map<std::string, std::string>> overrides_;
+};
+
+// A whole deck: the parsed file with the command line's --set overrides applied.
+class Deck {
+ public:
+  // Parses `file`; each override is "dotted.key=yaml-value". Throws InputError.
+  static Deck load(const std::string& file, const std::vector<std::string>& overrides = {});
+  static Deck parse(const std::string& text, const std::string& name,
+                    const std::vector<std::string>& overrides = {});
+  DeckNode root() const;
+  const std::string& file() const { return *file_; }
+
+ private:
+  YAML::Node root_;
+  std::shared_ptr<const std::string> file_;
+  std::shared_ptr<const std::map<std::string, std::string>> overrides_;
+};
+
+// Levenshtein distance, for "did you mean" suggestions.
+int edit_distance(const std::string& a, const std::string& b);
+std::string nearest(const std::string& word, const std::vector<std::string>& candidates);
+
+}  // namespace mp

@@ -1,0 +1,213 @@
+#include "config/scene.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <limits>
+
+namespace mp {
+
+namespace {
+constexpr double kHuge = std::numeric_limits<double>::max();
+
+BoundaryKind boundary_kind(const DeckNode& n, const std::string& key) {
+  const std::string v = n.get_enum(key, {"reflective", "outflow", "periodic"});
+  if (v == "reflective") return BoundaryKind::Reflective;
+  if (v == "outflow") return BoundaryKind::Outflow;
+  return BoundaryKind::Periodic;
+}
+
+void read_mesh(const DeckNode& root, Scene& s) {
+  const DeckNode m = root.child("mesh");
+  m.expect_keys({"cells", "lo", "hi", "ranks"});
+  s.mesh.cells = m.get_int3("cells", 1, 1 << 20);
+  s.mesh.lo = m.get_real3("lo", -kHuge, kHuge, {0, 0, 0});
+  s.mesh.hi = m.get_real3("hi", -kHuge, kHuge);
+  s.mesh.ranks = m.get_int3("ranks", 0, 1 << 20, {0, 0, 0});
+  for (int d = 0; d < 3; ++d)
+    if (!(s.mesh.hi[d] > s.mesh.lo[d]))
+      m.child("hi").fail(std::string("upper corner must exceed the lower corner along ") +
+                         "xyz"[d]);
+
+  for (int d = 0; d < 3; ++d) s.mesh.bc[d] = {BoundaryKind::Reflective, BoundaryKind::Reflective};
+  if (!root.has("boundaries")) return;
+  const DeckNode b = root.child("boundaries");
+  b.expect_keys({"x", "y", "z"});
+  for (int d = 0; d < 3; ++d) {
+    const std::string axis(1, "xyz"[d]);
+    if (!b.has(axis)) continue;
+    const DeckNode a = b.child(axis);
+    if (a.is_scalar()) {
+      const BoundaryKind k = boundary_kind(b, axis);
+      s.mesh.bc[d] = {k, k};
+    } else {
+      a.expect_keys({"lo", "hi"});
+      s.mesh.bc[d] = {a.has("lo") ? boundary_kind(a, "lo") : BoundaryKind::Reflective,
+                      a.has("hi") ? boundary_kind(a, "hi") : BoundaryKind::Reflective};
+      if ((s.mesh.bc[d][0] == BoundaryKind::Periodic) !=
+          (s.mesh.bc[d][1] == BoundaryKind::Periodic))
+        a.fail("periodic must be set on both faces of an axis (or as '" + axis + ": periodic')");
+    }
+  }
+}
+
+void read_materials(const DeckNode& root, Scene& s) {
+  const DeckNode list = root.child("materials");
+  if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of materials");
+  for (const DeckNode& m : list.items()) {
+    m.expect_keys({"name", "eos", "gamma"});
+    MaterialSpec spec;
+    spec.name = m.get_string("name");
+    for (const auto& other : s.materials)
+      if (other.name == spec.name)
+        m.child("name").fail("material '" + spec.name + "' defined twice");
+    spec.eos = m.get_enum("eos", {"ideal_gas"});
+    spec.gamma = m.get_real("gamma", 1.0 + 1e-6, 10.0);
+    s.materials.push_back(spec);
+  }
+  if (s.materials.size() > 1)
+    list.fail("this build runs one material per scene (multi-material mixing is not built yet)");
+}
+
+void read_shape(const DeckNode& r, const Scene& s, ShapeSpec& shape) {
+  shape.kind = r.get_enum("shape", {"all", "box", "sphere"}, "all");
+  const auto& lo = s.mesh.lo;
+  const auto& hi = s.mesh.hi;
+  if (shape.kind == "box") {
+    shape.lo = r.get_real3("lo", -kHuge, kHuge);
+    shape.hi = r.get_real3("hi", -kHuge, kHuge);
+    for (int d = 0; d < 3; ++d) {
+      if (!(shape.hi[d] > shape.lo[d]))
+        r.child("hi").fail(std::string("box upper corner must exceed its lower corner along ") +
+                           "xyz"[d]);
+      if (shape.hi[d] <= lo[d] || shape.lo[d] >= hi[d])
+        r.child("lo").fail("box lies outside the mesh");
+    }
+  } else if (shape.kind == "sphere") {
+    shape.center = r.get_real3("center", -kHuge, kHuge);
+    shape.radius = r.get_real("radius", 0, kHuge);
+    if (!(shape.radius > 0)) r.child("radius").fail("sphere radius must be positive");
+    for (int d = 0; d < 3; ++d)
+      if (shape.center[d] + shape.radius <= lo[d] || shape.center[d] - shape.radius >= hi[d])
+        r.child("center").fail("sphere lies outside the mesh");
+  }
+}
+
+void read_regions(const DeckNode& root, Scene& s) {
+  const DeckNode list = root.child("regions");
+  if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of regions");
+  std::vector<std::string> names;
+  for (const auto& m : s.materials) names.push_back(m.name);
+  bool first = true;
+  for (const DeckNode& r : list.items()) {
+    r.expect_keys({"material", "shape", "lo", "hi", "center", "radius", "density", "pressure",
+                   "energy", "velocity", "radial_velocity", "deposit", "wave"});
+    RegionSpec reg;
+    reg.material = r.get_string("material");
+    bool found = false;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == reg.material) {
+        reg.material_index = static_cast<int>(i);
+        found = true;
+      }
+    if (!found)
+      r.child("material")
+          .fail("unknown material '" + reg.material + "'; did you mean '" +
+                nearest(reg.material, names) + "'?");
+    read_shape(r, s, reg.shape);
+    if (first && reg.shape.kind != "all")
+      r.fail("the first region must be 'shape: all' (it fills the whole mesh)");
+    reg.density = r.get_real("density", 0, kHuge);
+    if (!(reg.density > 0)) r.child("density").fail("density must be positive");
+    if (r.has("pressure") == r.has("energy"))
+      r.fail("give exactly one of 'pressure' or 'energy' (specific internal energy)");
+    reg.has_pressure = r.has("pressure");
+    if (reg.has_pressure) {
+      reg.pressure = r.get_real("pressure", 0, kHuge);
+    } else {
+      reg.energy = r.get_real("energy", 0, kHuge);
+    }
+    if (r.has("velocity") && r.has("radial_velocity"))
+      r.fail("give 'velocity' or 'radial_velocity', not both");
+    reg.velocity = r.get_real3("velocity", -kHuge, kHuge, {0, 0, 0});
+    if (r.has("radial_velocity")) {
+      const DeckNode rv = r.child("radial_velocity");
+      rv.expect_keys({"speed", "center"});
+      reg.radial_velocity = true;
+      reg.velocity[0] = rv.get_real("speed", -kHuge, kHuge);
+      reg.velocity_center = rv.get_real3("center", -kHuge, kHuge, {0, 0, 0});
+    }
+    reg.deposit = r.get_real("deposit", 0, kHuge, 0);
+    if (r.has("wave")) {
+      const DeckNode wv = r.child("wave");
+      wv.expect_keys({"amplitude", "axis"});
+      reg.wave_amplitude = wv.get_real("amplitude", 0, 0.999);
+      const std::string axis = wv.get_enum("axis", {"x", "y", "z"}, "x");
+      reg.wave_axis = axis[0] - 'x';
+    }
+    s.regions.push_back(reg);
+    first = false;
+  }
+}
+
+}  // namespace
+
+bool ShapeSpec::contains(double x, double y, double z) const {
+  if (kind == "all") return true;
+  if (kind == "box")
+    return x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
+  const double dx = x - center[0], dy = y - center[1], dz = z - center[2];
+  return dx * dx + dy * dy + dz * dz < radius * radius;
+}
+
+Scene read_scene(const Deck& deck) {
+  const DeckNode root = deck.root();
+  root.expect_keys({"scene", "description", "mesh", "boundaries", "time", "numerics", "materials",
+                    "regions", "output"});
+  Scene s;
+  s.file = deck.file();
+  s.name = root.get_string("scene");
+  for (char ch : s.name)
+    if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
+      root.child("scene").fail("scene name may hold only letters, digits, '_' and '-'");
+  s.description = root.get_string("description", "");
+  read_mesh(root, s);
+
+  const DeckNode t = root.child("time");
+  t.expect_keys({"end", "cfl", "dt_initial", "dt_max", "growth", "max_cycles"});
+  s.time.end = t.get_real("end", 0, kHuge);
+  if (!(s.time.end > 0)) t.child("end").fail("end time must be positive");
+  s.time.cfl = t.get_real("cfl", 1e-3, 1.0, s.time.cfl);
+  s.time.dt_initial = t.get_real("dt_initial", 1e-300, kHuge, s.time.dt_initial);
+  s.time.dt_max = t.get_real("dt_max", 1e-300, kHuge, s.time.dt_max);
+  s.time.growth = t.get_real("growth", 1.0, 10.0, s.time.growth);
+  s.time.max_cycles = t.get_int("max_cycles", 1, 1000000000L, s.time.max_cycles);
+
+  if (root.has("numerics")) {
+    const DeckNode n = root.child("numerics");
+    n.expect_keys({"advection", "viscosity", "ke_fix"});
+    s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
+    s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
+    if (n.has("viscosity")) {
+      const DeckNode q = n.child("viscosity");
+      q.expect_keys({"linear", "quadratic"});
+      s.numerics.q_linear = q.get_real("linear", 0, 10, s.numerics.q_linear);
+      s.numerics.q_quadratic = q.get_real("quadratic", 0, 10, s.numerics.q_quadratic);
+    }
+  }
+
+  read_materials(root, s);
+  read_regions(root, s);
+
+  s.output.basename = s.name;
+  if (root.has("output")) {
+    const DeckNode o = root.child("output");
+    o.expect_keys({"dir", "interval", "write", "log_every"});
+    s.output.dir = o.get_string("dir", s.output.dir);
+    s.output.interval = o.get_real("interval", 0, kHuge, 0);
+    s.output.write = o.get_bool("write", true);
+    s.output.log_every = o.get_int("log_every", 1, 1000000000L, s.output.log_every);
+  }
+  return s;
+}
+
+}  // namespace mp

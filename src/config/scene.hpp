@@ -1,0 +1,84 @@
+// A scene: everything one run needs, read strictly from a YAML deck (see README, "Scene decks").
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "config/deck.hpp"
+#include "mesh/mesh.hpp"
+
+namespace mp {
+
+struct MaterialSpec {
+  std::string name;
+  std::string eos = "ideal_gas";
+  double gamma = 1.4;
+};
+
+struct ShapeSpec {
+  std::string kind = "all";          // all | box | sphere
+  std::array<double, 3> lo{}, hi{};  // box
+  std::array<double, 3> center{};    // sphere
+  double radius = 0;                 // sphere
+  bool contains(double x, double y, double z) const;
+};
+
+struct RegionSpec {
+  std::string material;
+  int material_index = 0;
+  ShapeSpec shape;
+  double density = 1;
+  bool has_pressure = false;
+  double pressure = 0;  // either pressure or specific internal energy is given
+  double energy = 0;
+  std::array<double, 3> velocity{};
+  bool radial_velocity = false;  // velocity[0] is a speed along the unit vector from `center`
+  std::array<double, 3> velocity_center{};
+  double deposit =
+      0;  // total internal energy added over the region (point blasts), split by volume
+  // A smooth density wave: rho * (1 + amplitude * sin(2 pi (x_axis - lo) / length of the box)),
+  // averaged exactly over each cell (for convergence studies). amplitude 0: none.
+  double wave_amplitude = 0;
+  int wave_axis = 0;
+};
+
+struct TimeSpec {
+  double end = 0;
+  double cfl = 0.5;
+  double dt_initial = 1e-4;
+  double dt_max = 1e30;
+  double growth = 1.1;
+  long max_cycles = 1000000;
+};
+
+struct NumericsSpec {
+  std::string advection = "second";  // second | first
+  double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
+  double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
+  bool ke_fix = true;                // return the kinetic energy the momentum remap dissipates
+};
+
+struct OutputSpec {
+  std::string dir = "output";
+  std::string basename;  // default: the scene name
+  double interval = 0;   // simulated time between dumps; 0: first and last only
+  bool write = true;     // false: no HDF5 dumps, only the summary
+  long log_every = 10;   // cycles between log lines
+};
+
+struct Scene {
+  std::string file;
+  std::string name;
+  std::string description;
+  MeshSpec mesh;
+  TimeSpec time;
+  NumericsSpec numerics;
+  std::vector<MaterialSpec> materials;
+  std::vector<RegionSpec> regions;
+  OutputSpec output;
+};
+
+// Reads and validates the whole deck; throws InputError naming file:line and key.
+Scene read_scene(const Deck& deck);
+
+}  // namespace mp
