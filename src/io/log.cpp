@@ -1,0 +1,52 @@
+#include "io/log.hpp"
+
+#include <mpi.h>
+
+#include <cstdio>
+
+namespace mp {
+
+void log_line(const std::string& text) {
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  if (rank == 0) std::printf("%s\n", text.c_str());
+  std::fflush(stdout);
+}
+
+void log_cycle(long cycle, double t, double dt, const std::string& limit,
+               const std::array<int, 3>& cell, double wall, double progress) {
+  std::printf("cycle %7ld  t %.6e  dt %.4e (%s at %d,%d,%d)  wall %9.3f s  %5.1f%%\n", cycle, t, dt,
+              limit.c_str(), cell[0], cell[1], cell[2], wall, 100.0 * progress);
+  std::fflush(stdout);
+}
+
+std::string json_escape(const std::string& s) {
+  std::string o;
+  for (char c : s) {
+    switch (c) {
+      case '"':
+        o += "\\\"";
+        break;
+      case '\\':
+        o += "\\\\";
+        break;
+      case '\n':
+        o += "\\n";
+        break;
+      case '\t':
+        o += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", c);
+          o += buf;
+        } else {
+          o += c;
+        }
+    }
+  }
+  return o;
+}
+
+}  // namespace mp
