@@ -1,0 +1,201 @@
+// Global reductions: the time step with its limiting cell, the health check that stops a
+// non-physical run, and the conserved totals of the run summary.
+#include <cfloat>
+#include <climits>
+
+#include "core/math.hpp"
+#include "core/reduce.hpp"
+#include "hydro/hydro.hpp"
+
+namespace mp::hydro {
+
+namespace {
+MPI_Datatype mpi_real() {
+  return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
+}
+}  // namespace
+
+TimeStep Hydro::time_step(Real dt_old, Real t, Real t_end) const {
+  const Geometry g = mesh_.geometry();
+  auto c = s_.c, q = s_.q, rho = s_.rho, u = s_.u, v = s_.v, w = s_.w;
+  const Real cfl = opt_.cfl;
+  const int nlx = g.nl[0], nly = g.nl[1], ng = g.ng;
+  using MinLoc = Kokkos::MinLoc<Real, long>;
+  typename MinLoc::value_type best;
+  Kokkos::parallel_reduce(
+      "timestep::cfl", mesh_.cells(Region::Owned),
+      KOKKOS_LAMBDA(int i, int j, int k, typename MinLoc::value_type& acc) {
+        // sound speed with the viscous pressure added: c_eff^2 = c^2 + 2 q / rho
+        const Real ceff = msqrt(c(i, j, k) * c(i, j, k) + 2 * q(i, j, k) / rho(i, j, k));
+        Real vmax[3] = {0, 0, 0};
+        for (int cc = 0; cc < 2; ++cc)
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+              vmax[0] = mmax(vmax[0], mabs(u(i + a, j + b, k + cc)));
+              vmax[1] = mmax(vmax[1], mabs(v(i + a, j + b, k + cc)));
+              vmax[2] = mmax(vmax[2], mabs(w(i + a, j + b, k + cc)));
+            }
+        Real dt = FLT_MAX;
+        for (int d = 0; d < 3; ++d) dt = mmin(dt, g.dx[d] / (ceff + vmax[d] + Real(1e-30)));
+        dt *= cfl;
+        if (dt < acc.val) {
+          acc.val = dt;
+          acc.loc = (i - ng) + long(nlx) * ((j - ng) + long(nly) * (k - ng));
+        }
+      },
+      MinLoc(best));
+  // Global minimum: the winning rank tells where its cell is.
+  struct {
+    double dt;
+    int rank;
+  } mine{double(best.val), mesh_.rank()}, global{};
+  MPI_Allreduce(&mine, &global, 1, MPI_DOUBLE_INT, MPI_MINLOC, mesh_.comm());
+  int cell[3] = {0, 0, 0};
+  if (mesh_.rank() == global.rank) {
+    cell[0] = int(best.loc % nlx) + g.offset[0];
+    cell[1] = int((best.loc / nlx) % nly) + g.offset[1];
+    cell[2] = int(best.loc / (long(nlx) * nly)) + g.offset[2];
+  }
+  MPI_Bcast(cell, 3, MPI_INT, global.rank, mesh_.comm());
+
+  TimeStep ts;
+  ts.dt = Real(global.dt);
+  ts.cell = {cell[0], cell[1], cell[2]};
+  ts.limit = "cfl";
+  if (dt_old > 0 && ts.dt > opt_.growth * dt_old) {
+    ts.dt = opt_.growth * dt_old;
+    ts.limit = "growth";
+  }
+  if (ts.dt > opt_.dt_max) {
+    ts.dt = opt_.dt_max;
+    ts.limit = "max";
+  }
+  if (t + ts.dt > t_end) {
+    ts.dt = t_end - t;
+    ts.limit = "end";
+  }
+  return ts;
+}
+
+Health Hydro::check() const {
+  const Geometry g = mesh_.geometry();
+  auto rho = s_.rho, e = s_.e, p = s_.p, u = s_.u, v = s_.v, w = s_.w;
+  const long nx = mesh_.global_cells(0), ny = mesh_.global_cells(1);
+  long first = LONG_MAX;
+  Kokkos::parallel_reduce(
+      "health::check", mesh_.cells(Region::Owned),
+      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+        const bool bad = !(rho(i, j, k) > 0) || !(e(i, j, k) >= 0) || !misfinite(rho(i, j, k)) ||
+                         !misfinite(e(i, j, k)) || !misfinite(p(i, j, k)) ||
+                         !misfinite(u(i, j, k)) || !misfinite(v(i, j, k)) || !misfinite(w(i, j, k));
+        if (bad) {
+          const long id =
+              g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+          if (id < acc) acc = id;
+        }
+      },
+      Kokkos::Min<long>(first));
+  long global_first = LONG_MAX;
+  MPI_Allreduce(&first, &global_first, 1, MPI_LONG, MPI_MIN, mesh_.comm());
+  Health h;
+  if (global_first == LONG_MAX) return h;
+  h.ok = false;
+  h.cell = {int(global_first % nx), int((global_first / nx) % ny), int(global_first / (nx * ny))};
+  // The owner reads the cell's values and shares them.
+  double vals[4] = {0, 0, 0, 0};
+  bool mine = true;
+  int loc[3];
+  for (int d = 0; d < 3; ++d) {
+    loc[d] = h.cell[d] - mesh_.offset(d) + Mesh::ng;
+    if (loc[d] < Mesh::ng || loc[d] >= Mesh::ng + mesh_.owned_cells(d)) mine = false;
+  }
+  if (mine) {
+    auto read = [&](const Field3& f) {
+      Real x = 0;
+      Kokkos::deep_copy(x, Kokkos::subview(f, loc[0], loc[1], loc[2]));
+      return double(x);
+    };
+    vals[0] = read(rho);
+    vals[1] = read(e);
+    vals[2] = read(p);
+    vals[3] = read(u);
+  }
+  double all[4];
+  MPI_Allreduce(vals, all, 4, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  h.rho = all[0];
+  h.e = all[1];
+  h.p = all[2];
+  h.volume = g.cell_volume();
+  h.what = !(h.rho > 0)  ? "density not positive"
+           : !(h.e >= 0) ? "negative internal energy"
+                         : "NaN or infinite value";
+  (void)mpi_real;
+  return h;
+}
+
+Totals Hydro::totals() const {
+  const Geometry g = mesh_.geometry();
+  const Real vol = g.cell_volume();
+  auto rho = s_.rho, e = s_.e, u = s_.u, v = s_.v, w = s_.w;
+  SumN<2> cells;
+  Kokkos::parallel_reduce(
+      "totals::cells", mesh_.cells(Region::Owned),
+      KOKKOS_LAMBDA(int i, int j, int k, SumN<2>& acc) {
+        const double mc = double(rho(i, j, k)) * vol;
+        acc.v[0] += mc;
+        acc.v[1] += mc * double(e(i, j, k));
+      },
+      Kokkos::Sum<SumN<2>>(cells));
+  // Each node once: [ng, ng+nl) on every rank, plus the last node at a physical high face.
+  // A node on a physical face carries half a dual cell per such face.
+  int hi[3];
+  bool lo_wall[3], hi_wall[3];
+  for (int d = 0; d < 3; ++d) {
+    hi_wall[d] = mesh_.physical_boundary(d, 1);
+    lo_wall[d] = mesh_.physical_boundary(d, 0);
+    hi[d] = Mesh::ng + mesh_.owned_cells(d) + (hi_wall[d] ? 1 : 0);
+  }
+  const int ng = Mesh::ng;
+  const int lx = ng, ly = ng, lz = ng;
+  const int hx = ng + mesh_.owned_cells(0), hy = ng + mesh_.owned_cells(1),
+            hz = ng + mesh_.owned_cells(2);
+  const bool lw0 = lo_wall[0], lw1 = lo_wall[1], lw2 = lo_wall[2];
+  const bool hw0 = hi_wall[0], hw1 = hi_wall[1], hw2 = hi_wall[2];
+  SumN<4> nodes;
+  Kokkos::parallel_reduce(
+      "totals::nodes", Policy3({ng, ng, ng}, {hi[0], hi[1], hi[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k, SumN<4>& acc) {
+        double m = 0;
+        for (int c = 0; c < 2; ++c)
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) m += rho(i - 1 + a, j - 1 + b, k - 1 + c);
+        m *= 0.125 * vol;
+        if ((lw0 && i == lx) || (hw0 && i == hx)) m *= 0.5;
+        if ((lw1 && j == ly) || (hw1 && j == hy)) m *= 0.5;
+        if ((lw2 && k == lz) || (hw2 && k == hz)) m *= 0.5;
+        const double uu = u(i, j, k), vv = v(i, j, k), ww = w(i, j, k);
+        acc.v[0] += m * uu;
+        acc.v[1] += m * vv;
+        acc.v[2] += m * ww;
+        acc.v[3] += 0.5 * m * (uu * uu + vv * vv + ww * ww);
+      },
+      Kokkos::Sum<SumN<4>>(nodes));
+  double local[7] = {cells.v[0], cells.v[1], nodes.v[0], nodes.v[1], nodes.v[2], nodes.v[3], 0};
+  double global[7];
+  MPI_Allreduce(local, global, 7, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  Totals t;
+  t.mass = global[0];
+  t.internal = global[1];
+  t.momentum = {global[2], global[3], global[4]};
+  t.kinetic = global[5];
+  return t;
+}
+
+std::vector<OutputField> Hydro::output_fields() const {
+  return {{"density", Centering::Cell, s_.rho},  {"energy", Centering::Cell, s_.e},
+          {"pressure", Centering::Cell, s_.p},   {"sound_speed", Centering::Cell, s_.c},
+          {"viscosity", Centering::Cell, s_.q},  {"velocity_x", Centering::Node, s_.u},
+          {"velocity_y", Centering::Node, s_.v}, {"velocity_z", Centering::Node, s_.w}};
+}
+
+}  // namespace mp::hydro

@@ -1,0 +1,102 @@
+// Single-material staggered-grid hydro: a predictor–corrector Lagrangian step followed by a
+// directionally split remap back to the fixed mesh (DESIGN.md §4). Cell-averaged fields live
+// here; per-material state plugs in beside them (the multi-material layouts).
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "eos/ideal_gas.hpp"
+#include "io/hdf5_writer.hpp"
+#include "mesh/halo.hpp"
+#include "mesh/mesh.hpp"
+
+namespace mp::hydro {
+
+struct Options {
+  int order = 2;  // advection order: 2 van Leer, 1 donor cell
+  Real q_linear = 0.2;
+  Real q_quadratic = 1.0;
+  Real cfl = 0.5;
+  Real growth = 1.1;
+  Real dt_max = 1e30;
+  // Give the kinetic energy that the momentum remap dissipates back to the cells as internal
+  // energy (DeBar's correction, see Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992),
+  // so total energy is conserved to round-off.
+  bool ke_fix = true;
+};
+
+struct State {
+  // cells
+  Field3 rho, e, p, c, q;
+  Field3 p_half;             // pressure at the half step (predictor)
+  Field3 pre_vol, post_vol;  // cell volumes before / after one remap sweep
+  // nodes
+  Field3 u, v, w;     // velocity
+  Field3 ub, vb, wb;  // time-centred velocity of the Lagrangian step
+  Field3 node_mass;   // remap scratch: nodal (dual-cell) mass before a sweep
+  Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
+  // faces, stored in node-extent views: face d at index i sits at node coordinate i along d
+  std::array<Field3, 3> vol_flux;
+  Field3 mass_flux, energy_flux;  // of the current sweep
+};
+
+struct TimeStep {
+  Real dt = 0;
+  std::array<int, 3> cell{{-1, -1, -1}};  // global index of the limiting cell
+  std::string limit;                      // "cfl", "divergence", "growth", "max", "end"
+};
+
+struct Totals {
+  double mass = 0, internal = 0, kinetic = 0;
+  std::array<double, 3> momentum{};
+  double total() const { return internal + kinetic; }
+};
+
+// The first cell (lowest global index) that went non-physical, if any.
+struct Health {
+  bool ok = true;
+  std::array<int, 3> cell{};
+  double rho = 0, e = 0, p = 0, volume = 0;
+  std::string what;
+};
+
+class Hydro {
+ public:
+  Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::IdealGas eos);
+
+  State& state() { return s_; }
+  const State& state() const { return s_; }
+  const Options& options() const { return opt_; }
+
+  // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
+  void prepare();
+  TimeStep time_step(Real dt_old, Real t, Real t_end) const;
+  // One full cycle: Lagrangian step then remap; `cycle` sets the sweep order. Returns the
+  // health of the Lagrangian volumes (a run stops when they collapse).
+  Health step(Real dt, long cycle);
+  Health check() const;
+  Totals totals() const;
+  std::vector<OutputField> output_fields() const;
+
+  // Exposed for tests.
+  void equation_of_state(const Field3& rho, const Field3& e, const Field3& p,
+                         const Field3& c) const;
+  void viscosity();
+  Health lagrange(Real dt);
+  void remap(long cycle);
+  void remap_sweep(int d, const std::array<bool, 3>& pending);
+
+ private:
+  void exchange_cells();
+  void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
+  void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
+
+  const Mesh& mesh_;
+  Halo& halo_;
+  Options opt_;
+  eos::IdealGas eos_;
+  State s_;
+};
+
+}  // namespace mp::hydro

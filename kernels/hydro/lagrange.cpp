@@ -1,0 +1,215 @@
+// The Lagrangian phase: EOS, artificial viscosity, and the predictor–corrector step on the
+// staggered mesh. The volume change of a cell and the force on a node use the same face areas,
+// so the work done on the nodes equals the p dV work taken from the cells.
+#include "core/math.hpp"
+#include "hydro/hydro.hpp"
+#include "hydro/point.hpp"
+
+namespace mp::hydro {
+
+Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::IdealGas eos)
+    : mesh_(mesh), halo_(halo), opt_(opt), eos_(eos) {
+  const auto C = Centering::Cell, N = Centering::Node;
+  s_.rho = mesh.new_field("density", C);
+  s_.e = mesh.new_field("energy", C);
+  s_.p = mesh.new_field("pressure", C);
+  s_.c = mesh.new_field("sound_speed", C);
+  s_.q = mesh.new_field("viscosity", C);
+  s_.p_half = mesh.new_field("pressure_half", C);
+  s_.pre_vol = mesh.new_field("pre_volume", C);
+  s_.post_vol = mesh.new_field("post_volume", C);
+  s_.u = mesh.new_field("velocity_x", N);
+  s_.v = mesh.new_field("velocity_y", N);
+  s_.w = mesh.new_field("velocity_z", N);
+  s_.ub = mesh.new_field("velocity_x_mid", N);
+  s_.vb = mesh.new_field("velocity_y_mid", N);
+  s_.wb = mesh.new_field("velocity_z_mid", N);
+  s_.node_mass = mesh.new_field("node_mass", N);
+  s_.ke_loss = mesh.new_field("ke_loss", N);
+  for (int d = 0; d < 3; ++d)
+    s_.vol_flux[d] = mesh.new_field(std::string("volume_flux_") + "xyz"[d], N);
+  s_.mass_flux = mesh.new_field("mass_flux", N);
+  s_.energy_flux = mesh.new_field("energy_flux", N);
+}
+
+void Hydro::exchange_cells() {
+  halo_.exchange({{s_.rho, Centering::Cell, {1, 1, 1}}, {s_.e, Centering::Cell, {1, 1, 1}}});
+}
+
+void Hydro::exchange_nodes(const Field3& u, const Field3& v, const Field3& w) {
+  halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
+                  {v, Centering::Node, {1, -1, 1}},
+                  {w, Centering::Node, {1, 1, -1}}});
+}
+
+void Hydro::prepare() {
+  exchange_cells();
+  exchange_nodes(s_.u, s_.v, s_.w);
+  equation_of_state(s_.rho, s_.e, s_.p, s_.c);
+  viscosity();
+}
+
+void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& p,
+                              const Field3& c) const {
+  const auto eos = eos_;
+  Kokkos::parallel_for(
+      "eos::ideal_gas", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+        p(i, j, k) = eos.pressure(rho(i, j, k), e(i, j, k));
+        c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
+      });
+}
+
+void Hydro::viscosity() {
+  auto rho = s_.rho, c = s_.c, q = s_.q, u = s_.u, v = s_.v, w = s_.w;
+  const Real cq = opt_.q_quadratic, cl = opt_.q_linear;
+  // Velocity jump across cell (i,j,k) along each axis, from the face-averaged node velocities.
+  auto jump_x = [=] KOKKOS_FUNCTION(int i, int j, int k) {
+    return Real(0.25) *
+           (u(i + 1, j, k) + u(i + 1, j + 1, k) + u(i + 1, j, k + 1) + u(i + 1, j + 1, k + 1) -
+            u(i, j, k) - u(i, j + 1, k) - u(i, j, k + 1) - u(i, j + 1, k + 1));
+  };
+  auto jump_y = [=] KOKKOS_FUNCTION(int i, int j, int k) {
+    return Real(0.25) *
+           (v(i, j + 1, k) + v(i + 1, j + 1, k) + v(i, j + 1, k + 1) + v(i + 1, j + 1, k + 1) -
+            v(i, j, k) - v(i + 1, j, k) - v(i, j, k + 1) - v(i + 1, j, k + 1));
+  };
+  auto jump_z = [=] KOKKOS_FUNCTION(int i, int j, int k) {
+    return Real(0.25) *
+           (w(i, j, k + 1) + w(i + 1, j, k + 1) + w(i, j + 1, k + 1) + w(i + 1, j + 1, k + 1) -
+            w(i, j, k) - w(i + 1, j, k) - w(i, j + 1, k) - w(i + 1, j + 1, k));
+  };
+  Kokkos::deep_copy(q, Real(0));
+  // Owned cells and one ghost layer (the nodes of the owned region read them); the limiter
+  // reads the neighbours along each axis.
+  Kokkos::parallel_for(
+      "lagrange::viscosity", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Real dx = limited_jump(jump_x(i - 1, j, k), jump_x(i, j, k), jump_x(i + 1, j, k));
+        const Real dy = limited_jump(jump_y(i, j - 1, k), jump_y(i, j, k), jump_y(i, j + 1, k));
+        const Real dz = limited_jump(jump_z(i, j, k - 1), jump_z(i, j, k), jump_z(i, j, k + 1));
+        const Real du = -msqrt(dx * dx + dy * dy + dz * dz);
+        q(i, j, k) = hydro::viscosity(rho(i, j, k), c(i, j, k), du, cq, cl);
+      });
+}
+
+// Volume swept by each face in time dt, from the face-averaged node velocities.
+void Hydro::volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt) {
+  const Geometry g = mesh_.geometry();
+  const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
+            ez = mesh_.extent(Centering::Cell, 2);
+  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  const Real ax = dt * g.dx[1] * g.dx[2] * Real(0.25), ay = dt * g.dx[0] * g.dx[2] * Real(0.25),
+             az = dt * g.dx[0] * g.dx[1] * Real(0.25);
+  Kokkos::parallel_for(
+      "lagrange::volume_flux_x", Policy3({0, 0, 0}, {ex + 1, ey, ez}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
+      });
+  Kokkos::parallel_for(
+      "lagrange::volume_flux_y", Policy3({0, 0, 0}, {ex, ey + 1, ez}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
+      });
+  Kokkos::parallel_for(
+      "lagrange::volume_flux_z", Policy3({0, 0, 0}, {ex, ey, ez + 1}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
+      });
+}
+
+Health Hydro::lagrange(Real dt) {
+  const Geometry g = mesh_.geometry();
+  const Real vol = g.cell_volume();
+  auto rho = s_.rho, e = s_.e, p = s_.p, q = s_.q, ph = s_.p_half;
+  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  const auto eos = eos_;
+
+  // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
+  volume_fluxes(s_.u, s_.v, s_.w, Real(0.5) * dt);
+  Kokkos::parallel_for(
+      "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                        fz(i, j, k + 1) - fz(i, j, k);
+        const Real mass = rho(i, j, k) * vol;
+        const Real v_half = vol + dv;
+        const Real e_half = e(i, j, k) - (p(i, j, k) + q(i, j, k)) * dv / mass;
+        ph(i, j, k) = eos.pressure(mass / v_half, e_half);
+      });
+
+  // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
+  auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
+  const Real axf = g.dx[1] * g.dx[2] * Real(0.25), ayf = g.dx[0] * g.dx[2] * Real(0.25),
+             azf = g.dx[0] * g.dx[1] * Real(0.25);
+  Kokkos::parallel_for(
+      "lagrange::acceleration", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+        for (int c = 0; c < 2; ++c)
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+              const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
+              const Real pt = ph(ci, cj, ck) + q(ci, cj, ck);
+              // a cell below the node along an axis pushes it up, a cell above pushes it down
+              fxs += (a == 0 ? pt : -pt);
+              fys += (b == 0 ? pt : -pt);
+              fzs += (c == 0 ? pt : -pt);
+              mass += rho(ci, cj, ck);
+            }
+        mass *= Real(0.125) * vol;
+        const Real ax = fxs * axf / mass, ay = fys * ayf / mass, az = fzs * azf / mass;
+        ub(i, j, k) = u(i, j, k) + Real(0.5) * dt * ax;
+        vb(i, j, k) = v(i, j, k) + Real(0.5) * dt * ay;
+        wb(i, j, k) = w(i, j, k) + Real(0.5) * dt * az;
+        u(i, j, k) += dt * ax;
+        v(i, j, k) += dt * ay;
+        w(i, j, k) += dt * az;
+      });
+  halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
+                  {v, Centering::Node, {1, -1, 1}},
+                  {w, Centering::Node, {1, 1, -1}},
+                  {ub, Centering::Node, {-1, 1, 1}},
+                  {vb, Centering::Node, {1, -1, 1}},
+                  {wb, Centering::Node, {1, 1, -1}}});
+
+  // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
+  volume_fluxes(ub, vb, wb, dt);
+  Kokkos::parallel_for(
+      "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                        fz(i, j, k + 1) - fz(i, j, k);
+        const Real mass = rho(i, j, k) * vol;
+        e(i, j, k) -= (ph(i, j, k) + q(i, j, k)) * dv / mass;
+        rho(i, j, k) = mass / (vol + dv);
+      });
+
+  // The Lagrangian volumes must stay positive.
+  const Real vmin = vol;
+  long bad = 0;
+  Kokkos::parallel_reduce(
+      "lagrange::volume_check", mesh_.cells(Region::Owned),
+      KOKKOS_LAMBDA(int i, int j, int k, long& n) {
+        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                        fz(i, j, k + 1) - fz(i, j, k);
+        if (!(vmin + dv > 0)) ++n;
+      },
+      bad);
+  long total_bad = 0;
+  MPI_Allreduce(&bad, &total_bad, 1, MPI_LONG, MPI_SUM, mesh_.comm());
+  Health h;
+  if (total_bad > 0) {
+    h = check();
+    h.ok = false;
+    if (h.what.empty()) h.what = "negative Lagrangian volume";
+  }
+  exchange_cells();
+  return h;
+}
+
+Health Hydro::step(Real dt, long cycle) {
+  Health h = lagrange(dt);
+  if (!h.ok) return h;
+  remap(cycle);
+  equation_of_state(s_.rho, s_.e, s_.p, s_.c);
+  viscosity();
+  return check();
+}
+
+}  // namespace mp::hydro

@@ -1,0 +1,297 @@
+#include "driver/simulation.hpp"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "core/math.hpp"
+#include "io/hdf5_writer.hpp"
+#include "io/log.hpp"
+
+namespace mp {
+
+namespace {
+
+// A region as the painting kernel sees it.
+struct RegionDev {
+  int kind;  // 0 all, 1 box, 2 sphere
+  double lo[3], hi[3], center[3], radius;
+  double rho, e, vel[3], vcenter[3];
+  int radial;
+  double wave_amp, wave_lo, wave_len;
+  int wave_axis;
+
+  KOKKOS_INLINE_FUNCTION bool contains(double x, double y, double z) const {
+    if (kind == 0) return true;
+    if (kind == 1)
+      return x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
+    const double dx = x - center[0], dy = y - center[1], dz = z - center[2];
+    return dx * dx + dy * dy + dz * dz < radius * radius;
+  }
+};
+
+void make_dirs(const std::string& dir) {
+  std::string path;
+  std::stringstream ss(dir);
+  if (!dir.empty() && dir[0] == '/') path = "/";
+  for (std::string part; std::getline(ss, part, '/');) {
+    if (part.empty()) continue;
+    path += part + "/";
+    if (mkdir(path.c_str(), 0755) != 0 && errno != EEXIST)
+      throw RunError("cannot create output directory '" + path + "': " + std::strerror(errno));
+  }
+}
+
+}  // namespace
+
+Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
+    : scene_(scene), settings_(std::move(settings)) {
+  mesh_ = std::make_unique<Mesh>(scene_.mesh, comm);
+  halo_ = std::make_unique<Halo>(*mesh_);
+  hydro::Options opt;
+  opt.order = scene_.numerics.advection == "first" ? 1 : 2;
+  opt.q_linear = Real(scene_.numerics.q_linear);
+  opt.q_quadratic = Real(scene_.numerics.q_quadratic);
+  opt.cfl = Real(scene_.time.cfl);
+  opt.growth = Real(scene_.time.growth);
+  opt.dt_max = Real(scene_.time.dt_max);
+  opt.ke_fix = scene_.numerics.ke_fix;
+  eos::IdealGas gas{Real(scene_.materials[0].gamma)};
+  hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, gas);
+}
+
+Simulation::~Simulation() = default;
+
+std::vector<std::string> Simulation::modules() const {
+  std::vector<std::string> m;
+  m.push_back("hydro: staggered Lagrange (predictor-corrector) + split remap, " +
+              std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
+                                                               : "second-order van Leer") +
+              " advection");
+  m.push_back("eos: ideal gas (" + scene_.materials[0].name +
+              ", gamma=" + std::to_string(scene_.materials[0].gamma) + ")");
+  m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
+  return m;
+}
+
+void Simulation::initialize() {
+  std::vector<RegionDev> regs;
+  const eos::IdealGas gas{Real(scene_.materials[0].gamma)};
+  for (const auto& r : scene_.regions) {
+    RegionDev d{};
+    d.kind = r.shape.kind == "all" ? 0 : r.shape.kind == "box" ? 1 : 2;
+    for (int a = 0; a < 3; ++a) {
+      d.lo[a] = r.shape.lo[a];
+      d.hi[a] = r.shape.hi[a];
+      d.center[a] = r.shape.center[a];
+      d.vel[a] = r.velocity[a];
+      d.vcenter[a] = r.velocity_center[a];
+    }
+    d.radius = r.shape.radius;
+    d.rho = r.density;
+    d.e = r.has_pressure ? double(gas.energy(Real(r.density), Real(r.pressure))) : r.energy;
+    d.radial = r.radial_velocity ? 1 : 0;
+    d.wave_amp = r.wave_amplitude;
+    d.wave_axis = r.wave_axis;
+    d.wave_lo = scene_.mesh.lo[r.wave_axis];
+    d.wave_len = scene_.mesh.hi[r.wave_axis] - scene_.mesh.lo[r.wave_axis];
+    regs.push_back(d);
+  }
+  Kokkos::View<RegionDev*, MemSpace> dregs("regions", regs.size());
+  auto hregs = Kokkos::create_mirror_view(dregs);
+  for (std::size_t n = 0; n < regs.size(); ++n) hregs(n) = regs[n];
+  Kokkos::deep_copy(dregs, hregs);
+  const int nreg = static_cast<int>(regs.size());
+
+  auto& s = hydro_->state();
+  auto rho = s.rho, e = s.e, u = s.u, v = s.v, w = s.w;
+  const Geometry g = mesh_->geometry();
+  Kokkos::parallel_for(
+      "init::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double x = g.cell_center(0, i), y = g.cell_center(1, j), z = g.cell_center(2, k);
+        for (int n = 0; n < nreg; ++n)
+          if (dregs(n).contains(x, y, z)) {
+            const RegionDev& r = dregs(n);
+            double f = 1;
+            if (r.wave_amp > 0) {
+              // exact cell average of sin(2 pi (x - lo) / L) over the cell
+              const int a = r.wave_axis;
+              const int idx = a == 0 ? i : a == 1 ? j : k;
+              const double kw = 2 * M_PI / r.wave_len, h = g.dx[a];
+              const double x0 = g.node_coord(a, idx) - r.wave_lo, x1 = x0 + h;
+              f = 1 + r.wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) /
+                          (kw * h);
+            }
+            rho(i, j, k) = Real(r.rho * f);
+            // the wave is an entropy wave: pressure stays uniform
+            e(i, j, k) = Real(r.wave_amp > 0 ? r.e / f : r.e);
+          }
+      });
+  Kokkos::parallel_for(
+      "init::nodes", mesh_->nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        const double x = g.node_coord(0, i), y = g.node_coord(1, j), z = g.node_coord(2, k);
+        for (int n = 0; n < nreg; ++n)
+          if (dregs(n).contains(x, y, z)) {
+            const RegionDev& r = dregs(n);
+            if (r.radial) {
+              const double rx = x - r.vcenter[0], ry = y - r.vcenter[1], rz = z - r.vcenter[2];
+              const double len = MP_KOKKOS_MATH::sqrt(rx * rx + ry * ry + rz * rz);
+              const double f = len > 0 ? r.vel[0] / len : 0.0;
+              u(i, j, k) = Real(f * rx);
+              v(i, j, k) = Real(f * ry);
+              w(i, j, k) = Real(f * rz);
+            } else {
+              u(i, j, k) = Real(r.vel[0]);
+              v(i, j, k) = Real(r.vel[1]);
+              w(i, j, k) = Real(r.vel[2]);
+            }
+          }
+      });
+
+  // Energy deposits (point blasts): the total is split evenly over the region's cells.
+  for (int n = 0; n < nreg; ++n) {
+    const double deposit = scene_.regions[n].deposit;
+    if (deposit <= 0) continue;
+    const RegionDev r = regs[n];
+    long count = 0;
+    Kokkos::parallel_reduce(
+        "init::deposit_count", mesh_->cells(Region::Owned),
+        KOKKOS_LAMBDA(int i, int j, int k, long& c) {
+          if (r.contains(g.cell_center(0, i), g.cell_center(1, j), g.cell_center(2, k))) ++c;
+        },
+        count);
+    long total = 0;
+    MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, mesh_->comm());
+    if (total == 0)
+      throw InputError(scene_.file + ": region " + std::to_string(n) +
+                       " deposits energy but contains no cell centre; enlarge it");
+    const double per_cell = deposit / double(total);
+    const double vol = g.cell_volume();
+    Kokkos::parallel_for(
+        "init::deposit", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          if (r.contains(g.cell_center(0, i), g.cell_center(1, j), g.cell_center(2, k)))
+            e(i, j, k) += Real(per_cell / (double(rho(i, j, k)) * vol));
+        });
+  }
+  hydro_->prepare();
+}
+
+std::string Simulation::write_dump(double t, long cycle) {
+  if (!writer_) return "";
+  return writer_->write(hydro_->output_fields(), t, static_cast<int>(cycle));
+}
+
+RunResult Simulation::run() {
+  const bool root = mesh_->rank() == 0;
+  const bool write = !settings_.output_dir.empty();
+  if (write) {
+    if (root) make_dirs(settings_.output_dir);
+    MPI_Barrier(mesh_->comm());
+    if (scene_.output.write)
+      writer_ = std::make_unique<Hdf5Writer>(*mesh_, settings_.output_dir, scene_.output.basename);
+  }
+  RunResult r;
+  r.start = hydro_->totals();
+  const auto t0 = std::chrono::steady_clock::now();
+  auto wall = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+
+  const double t_end = scene_.time.end;
+  double t = 0, next_dump = scene_.output.interval > 0 ? scene_.output.interval : t_end;
+  Real dt_old = 0;
+  long cycle = 0;
+  if (write && writer_) r.files.push_back(write_dump(t, cycle));
+  hydro::Health h;
+  while (t < t_end * (1 - 1e-12) && cycle < scene_.time.max_cycles) {
+    hydro::TimeStep ts = hydro_->time_step(dt_old, Real(t), Real(t_end));
+    if (cycle == 0 && ts.dt > Real(scene_.time.dt_initial)) {
+      ts.dt = Real(scene_.time.dt_initial);
+      ts.limit = "initial";
+    }
+    h = hydro_->step(ts.dt, cycle);
+    t += double(ts.dt);
+    ++cycle;
+    dt_old = ts.dt;
+    if (!h.ok) break;
+    if (!settings_.quiet && root &&
+        (cycle % scene_.output.log_every == 0 || t >= t_end * (1 - 1e-12)))
+      log_cycle(cycle, t, double(ts.dt), ts.limit, ts.cell, wall(), t / t_end);
+    if (write && writer_ && scene_.output.interval > 0 && t >= next_dump * (1 - 1e-12) &&
+        t < t_end * (1 - 1e-12)) {
+      r.files.push_back(write_dump(t, cycle));
+      next_dump += scene_.output.interval;
+    }
+  }
+  r.cycles = cycle;
+  r.time = t;
+  r.wall = wall();
+  r.end = hydro_->totals();
+  r.health = h;
+  r.ok = h.ok;
+  if (write && writer_) r.files.push_back(write_dump(t, cycle));
+  if (write) write_summary(r);
+  return r;
+}
+
+void Simulation::write_summary(const RunResult& r) const {
+  if (mesh_->rank() != 0) return;
+  const double cc = double(mesh_->global_cell_count()) * double(r.cycles);
+  std::ostringstream js;
+  js.precision(17);
+  auto totals = [&](const hydro::Totals& t) {
+    std::ostringstream o;
+    o.precision(17);
+    o << "{\"mass\": " << t.mass << ", \"momentum\": [" << t.momentum[0] << ", " << t.momentum[1]
+      << ", " << t.momentum[2] << "], \"internal_energy\": " << t.internal
+      << ", \"kinetic_energy\": " << t.kinetic << ", \"total_energy\": " << t.total() << "}";
+    return o.str();
+  };
+  js << "{\n  \"scene\": \"" << scene_.name << "\",\n  \"deck\": \"" << json_escape(scene_.file)
+     << "\",\n  \"version\": \"" << MINIPAGOSA_VERSION << "\",\n  \"status\": \""
+     << (r.ok ? "completed" : "stopped: " + json_escape(r.health.what)) << "\",\n"
+     << "  \"ranks\": " << mesh_->nranks() << ",\n  \"decomposition\": [" << mesh_->dims()[0]
+     << ", " << mesh_->dims()[1] << ", " << mesh_->dims()[2] << "],\n"
+     << "  \"kokkos_execution_space\": \"" << ExecSpace::name() << "\",\n"
+     << "  \"threads_per_rank\": " << ExecSpace().concurrency() << ",\n"
+     << "  \"real\": \"" << (sizeof(Real) == 8 ? "double" : "float") << "\",\n"
+     << "  \"cells\": [" << mesh_->global_cells(0) << ", " << mesh_->global_cells(1) << ", "
+     << mesh_->global_cells(2) << "],\n  \"cycles\": " << r.cycles << ",\n  \"time\": " << r.time
+     << ",\n  \"wall_seconds\": " << r.wall
+     << ",\n  \"cell_cycles_per_second\": " << (r.wall > 0 ? cc / r.wall : 0)
+     << ",\n  \"modules\": [";
+  const auto mods = modules();
+  for (std::size_t i = 0; i < mods.size(); ++i)
+    js << (i ? ", " : "") << "\"" << json_escape(mods[i]) << "\"";
+  const double dm = r.end.mass - r.start.mass;
+  const double de = r.end.total() - r.start.total();
+  js << "],\n  \"start\": " << totals(r.start) << ",\n  \"end\": " << totals(r.end)
+     << ",\n  \"mass_change_relative\": " << (r.start.mass != 0 ? dm / r.start.mass : 0)
+     << ",\n  \"total_energy_change_relative\": "
+     << (r.start.total() != 0 ? de / r.start.total() : 0) << ",\n  \"files\": [";
+  for (std::size_t i = 0; i < r.files.size(); ++i)
+    js << (i ? ", " : "") << "\"" << json_escape(r.files[i]) << "\"";
+  js << "]";
+  if (!r.ok)
+    js << ",\n  \"failure\": {\"what\": \"" << json_escape(r.health.what) << "\", \"cell\": ["
+       << r.health.cell[0] << ", " << r.health.cell[1] << ", " << r.health.cell[2]
+       << "], \"cycle\": " << r.cycles << ", \"density\": " << r.health.rho
+       << ", \"energy\": " << r.health.e << ", \"pressure\": " << r.health.p << "}";
+  js << "\n}\n";
+  const std::string path = settings_.output_dir + "/summary.json";
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << js.str();
+    if (!out) throw RunError("cannot write " + tmp);
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RunError("cannot rename " + tmp);
+}
+
+}  // namespace mp

@@ -1,0 +1,47 @@
+// minipagosa SCENE.yaml [--set key=value]... [--output DIR]
+#include <mpi.h>
+
+#include <CLI/CLI.hpp>
+#include <Kokkos_Core.hpp>
+#include <cstdio>
+#include <sstream>
+
+#include "config/scene.hpp"
+#include "core/error.hpp"
+#include "driver/run.hpp"
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  // Kokkos takes its own --kokkos-* options out of argv first.
+  Kokkos::initialize(argc, argv);
+  int rc = 0;
+  {
+    CLI::App app{
+        "minipagosa: a Kokkos/MPI mini-app of PAGOSA, the LANL 3-D multi-material "
+        "Eulerian hydrocode. Kokkos options (--kokkos-threads=N, --kokkos-help, ...) "
+        "are passed through to Kokkos.",
+        "minipagosa"};
+    mp::CommandLine cl;
+    app.add_option("scene", cl.scene, "YAML scene deck")->required()->check(CLI::ExistingFile);
+    app.add_option("--set", cl.overrides,
+                   "override a deck value, e.g. --set mesh.cells=[64,64,64] (repeatable)");
+    app.add_option("-o,--output", cl.output, "output directory (default: the deck's output.dir)");
+    app.add_flag("-q,--quiet", cl.quiet, "no per-cycle log lines");
+    app.add_flag("--check", cl.check_only, "validate the deck and the decomposition, then exit");
+    app.set_version_flag("-V,--version", std::string("minipagosa ") + MINIPAGOSA_VERSION +
+                                             " (Kokkos " + std::to_string(KOKKOS_VERSION) + ")");
+    try {
+      app.parse(argc, argv);
+      rc = mp::run(cl);
+    } catch (const CLI::ParseError& e) {
+      // --help and --version exit 0; any other command-line error is bad input (exit code 2).
+      const int code = rank == 0 ? app.exit(e) : e.get_exit_code();
+      rc = code == 0 ? 0 : 2;
+    }
+  }
+  Kokkos::finalize();
+  MPI_Finalize();
+  return rc;
+}

@@ -1,0 +1,65 @@
+// Helpers shared by the integration tests: run a scene from configs/, gather fields globally.
+#pragma once
+#include <mpi.h>
+
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/scene.hpp"
+#include "driver/simulation.hpp"
+
+namespace mp::test {
+
+inline std::string source_dir() {
+  const char* s = std::getenv("MINIPAGOSA_SOURCE_DIR");
+  return s ? s : ".";
+}
+
+inline Scene load_scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
+  return read_scene(Deck::load(source_dir() + "/configs/" + name, overrides));
+}
+
+struct Ran {
+  std::unique_ptr<Simulation> sim;
+  RunResult result;
+};
+
+// Runs a scene quietly, writing nothing, on `comm`.
+inline Ran run_scene(const Scene& scene, MPI_Comm comm = MPI_COMM_WORLD) {
+  Ran r;
+  RunSettings settings;
+  settings.quiet = true;
+  r.sim = std::make_unique<Simulation>(scene, comm, settings);
+  r.sim->initialize();
+  r.result = r.sim->run();
+  return r;
+}
+
+// The whole global array of a field on every rank of the mesh's communicator, x fastest.
+// Each global entry is written by exactly one rank, so the sum-reduction is exact.
+inline std::vector<double> gather(const Mesh& mesh, const Field3& f, Centering c) {
+  const int extra = c == Centering::Node ? 1 : 0;
+  const long nx = mesh.global_cells(0) + extra, ny = mesh.global_cells(1) + extra,
+             nz = mesh.global_cells(2) + extra;
+  std::vector<double> out(nx * ny * nz, 0.0);
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), f);
+  int hi[3];
+  for (int d = 0; d < 3; ++d) {
+    const bool last = mesh.offset(d) + mesh.owned_cells(d) == mesh.global_cells(d);
+    hi[d] = Mesh::ng + mesh.owned_cells(d) + (extra && last ? 1 : 0);
+  }
+  for (int k = Mesh::ng; k < hi[2]; ++k)
+    for (int j = Mesh::ng; j < hi[1]; ++j)
+      for (int i = Mesh::ng; i < hi[0]; ++i) {
+        const long gi = mesh.offset(0) + i - Mesh::ng, gj = mesh.offset(1) + j - Mesh::ng,
+                   gk = mesh.offset(2) + k - Mesh::ng;
+        out[gi + nx * (gj + ny * gk)] = h(i, j, k);
+      }
+  MPI_Allreduce(MPI_IN_PLACE, out.data(), static_cast<int>(out.size()), MPI_DOUBLE, MPI_SUM,
+                mesh.comm());
+  return out;
+}
+
+}  // namespace mp::test

@@ -1,0 +1,246 @@
+// Verification of the single-material hydro against exact solutions (issue: single-material
+// hydro). Every test asserts numbers: error norms, observed orders, wave positions, plateaus.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "exact/riemann.hpp"
+#include "support.hpp"
+
+using namespace mp;
+
+namespace {
+
+struct Profile {
+  std::vector<double> x, rho, e, u;
+  double dx;
+};
+
+// Density, energy and x-velocity along x of a quasi-1-D run (row j = k = 0; cell-centred
+// velocity as the mean of the node values on the cell's two faces).
+Profile profile_x(const test::Ran& r) {
+  const Mesh& m = r.sim->mesh();
+  const auto& s = r.sim->hydro().state();
+  const auto rho = test::gather(m, s.rho, Centering::Cell);
+  const auto e = test::gather(m, s.e, Centering::Cell);
+  const auto u = test::gather(m, s.u, Centering::Node);
+  Profile p;
+  const int nx = m.global_cells(0);
+  p.dx = m.dx(0);
+  for (int i = 0; i < nx; ++i) {
+    p.x.push_back(m.spec().lo[0] + (i + 0.5) * p.dx);
+    p.rho.push_back(rho[i]);
+    p.e.push_back(e[i]);
+    p.u.push_back(0.5 * (u[i] + u[i + 1]));
+  }
+  return p;
+}
+
+double l1_sod(const Profile& p, const exact::Riemann& rs, double x0, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    err += std::abs(p.rho[i] - rs.sample((p.x[i] - x0) / t).rho) * p.dx;
+  return err;
+}
+
+// First x, scanning from `from` in direction `dir`, where rho crosses `level`.
+double crossing(const Profile& p, double level, int dir) {
+  const int n = static_cast<int>(p.x.size());
+  for (int step = 0; step < n - 1; ++step) {
+    const int i = dir > 0 ? step : n - 1 - step;
+    const int j = i + dir;
+    if ((p.rho[i] - level) * (p.rho[j] - level) <= 0) {
+      const double t = (level - p.rho[i]) / (p.rho[j] - p.rho[i]);
+      return p.x[i] + t * (p.x[j] - p.x[i]);
+    }
+  }
+  return NAN;
+}
+
+const exact::Riemann kSod({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 1.4);
+
+}  // namespace
+
+TEST(Sod, ConvergesToExactSolution) {
+  const int sizes[3] = {100, 200, 400};
+  double err[3];
+  for (int n = 0; n < 3; ++n) {
+    auto r = test::run_scene(
+        test::load_scene("sod_x.yaml", {"mesh.cells=[" + std::to_string(sizes[n]) + ",2,2]"}));
+    ASSERT_TRUE(r.result.ok);
+    err[n] = l1_sod(profile_x(r), kSod, 0.5, 0.2);
+  }
+  const double o1 = std::log2(err[0] / err[1]), o2 = std::log2(err[1] / err[2]);
+  std::printf("Sod L1(rho): %d %.4e  %d %.4e  %d %.4e  observed order %.3f %.3f\n", sizes[0],
+              err[0], sizes[1], err[1], sizes[2], err[2], o1, o2);
+  EXPECT_LT(err[0], 6.0e-3);
+  EXPECT_LT(err[2], 2.0e-3);
+  // Discontinuities cap the order near 1 for any scheme; below 0.6 would mean a first-order
+  // error somewhere in the smooth parts.
+  EXPECT_GT(o1, 0.6);
+  EXPECT_GT(o2, 0.6);
+}
+
+TEST(Sod, WavePositions) {
+  auto r = test::run_scene(test::load_scene("sod_x.yaml", {"mesh.cells=[400,2,2]"}));
+  ASSERT_TRUE(r.result.ok);
+  const Profile p = profile_x(r);
+  const double t = 0.2, x0 = 0.5;
+  const double shock = x0 + kSod.right_head_speed() * t;
+  const double contact = x0 + kSod.u_star() * t;
+  const double head = x0 + kSod.left_head_speed() * t;
+  const double tail = x0 + kSod.left_tail_speed() * t;
+  const double x_shock = crossing(p, 0.5 * (kSod.rho_star_right() + 0.125), -1);
+  const double x_contact = crossing(p, 0.5 * (kSod.rho_star_left() + kSod.rho_star_right()), -1);
+  const double x_head = crossing(p, 1.0 - 0.01, +1);
+  std::printf(
+      "Sod positions: shock %.4f (exact %.4f), contact %.4f (%.4f), rarefaction head "
+      "%.4f (%.4f), tail exact %.4f, dx %.4f\n",
+      x_shock, shock, x_contact, contact, x_head, head, tail, p.dx);
+  EXPECT_NEAR(x_shock, shock, 1.5 * p.dx);
+  EXPECT_NEAR(x_contact, contact, 3.0 * p.dx);
+  EXPECT_NEAR(x_head, head, 3.0 * p.dx);
+  // The plateau between tail and contact holds the exact star density to 1 %.
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    if (p.x[i] > tail + 4 * p.dx && p.x[i] < contact - 6 * p.dx) {
+      EXPECT_NEAR(p.rho[i], kSod.rho_star_left(), 0.01 * kSod.rho_star_left()) << p.x[i];
+    }
+}
+
+TEST(Sod, SameAlongEveryAxis) {
+  auto rx = test::run_scene(test::load_scene("sod_x.yaml", {"mesh.cells=[100,2,2]"}));
+  auto ry = test::run_scene(test::load_scene("sod_y.yaml", {"mesh.cells=[2,100,2]"}));
+  auto rz = test::run_scene(test::load_scene("sod_z.yaml", {"mesh.cells=[2,2,100]"}));
+  ASSERT_TRUE(rx.result.ok && ry.result.ok && rz.result.ok);
+  EXPECT_EQ(rx.result.cycles, ry.result.cycles);
+  EXPECT_EQ(rx.result.cycles, rz.result.cycles);
+  const auto& sx = rx.sim->hydro().state();
+  const auto& sy = ry.sim->hydro().state();
+  const auto& sz = rz.sim->hydro().state();
+  const auto ax = test::gather(rx.sim->mesh(), sx.rho, Centering::Cell);
+  const auto ay = test::gather(ry.sim->mesh(), sy.rho, Centering::Cell);
+  const auto az = test::gather(rz.sim->mesh(), sz.rho, Centering::Cell);
+  const auto ex = test::gather(rx.sim->mesh(), sx.e, Centering::Cell);
+  const auto ey = test::gather(ry.sim->mesh(), sy.e, Centering::Cell);
+  const auto ez = test::gather(rz.sim->mesh(), sz.e, Centering::Cell);
+  double dmax = 0;
+  for (int i = 0; i < 100; ++i)
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) {
+        const double x = ax[i + 100 * (a + 2 * b)], xe = ex[i + 100 * (a + 2 * b)];
+        const double y = ay[a + 2 * (i + 100 * b)], ye = ey[a + 2 * (i + 100 * b)];
+        const double z = az[a + 2 * (b + 2 * i)], ze = ez[a + 2 * (b + 2 * i)];
+        dmax = std::max(
+            {dmax, std::abs(x - y), std::abs(x - z), std::abs(xe - ye), std::abs(xe - ze)});
+      }
+  std::printf("Sod x/y/z max difference: %.3e\n", dmax);
+  EXPECT_LE(dmax, 1e-13);
+}
+
+TEST(SmoothWave, SecondOrder) {
+  const int sizes[3] = {32, 64, 128};
+  double err[3];
+  for (int n = 0; n < 3; ++n) {
+    const int nx = sizes[n];
+    const std::string h = std::to_string(2.0 / nx);
+    auto scene = test::load_scene(
+        "smooth_wave.yaml",
+        {"mesh.cells=[" + std::to_string(nx) + ",2,2]", "mesh.hi=[1," + h + "," + h + "]"});
+    auto r = test::run_scene(scene);
+    ASSERT_TRUE(r.result.ok);
+    const Profile p = profile_x(r);
+    double e1 = 0;
+    const double kw = 2 * M_PI;
+    for (int i = 0; i < nx; ++i) {
+      const double x0 = i * p.dx, x1 = x0 + p.dx;
+      const double exact = 1 + 0.2 * (std::cos(kw * x0) - std::cos(kw * x1)) / (kw * p.dx);
+      e1 += std::abs(p.rho[i] - exact) * p.dx;
+    }
+    err[n] = e1;
+  }
+  const double o1 = std::log2(err[0] / err[1]), o2 = std::log2(err[1] / err[2]);
+  std::printf("Smooth wave L1(rho): %d %.4e  %d %.4e  %d %.4e  observed order %.3f %.3f\n",
+              sizes[0], err[0], sizes[1], err[1], sizes[2], err[2], o1, o2);
+  EXPECT_GE(o2, 1.8);
+  EXPECT_LT(err[2], 4e-4);
+}
+
+TEST(SmoothWave, FirstOrderOptionIsFirstOrder) {
+  double err[2];
+  const int sizes[2] = {64, 128};
+  for (int n = 0; n < 2; ++n) {
+    const int nx = sizes[n];
+    const std::string h = std::to_string(2.0 / nx);
+    auto r = test::run_scene(test::load_scene(
+        "smooth_wave.yaml", {"mesh.cells=[" + std::to_string(nx) + ",2,2]",
+                             "mesh.hi=[1," + h + "," + h + "]", "numerics.advection=first"}));
+    ASSERT_TRUE(r.result.ok);
+    const Profile p = profile_x(r);
+    double e1 = 0;
+    const double kw = 2 * M_PI;
+    for (int i = 0; i < nx; ++i) {
+      const double x0 = i * p.dx, x1 = x0 + p.dx;
+      e1 += std::abs(p.rho[i] - (1 + 0.2 * (std::cos(kw * x0) - std::cos(kw * x1)) / (kw * p.dx))) *
+            p.dx;
+    }
+    err[n] = e1;
+  }
+  const double o = std::log2(err[0] / err[1]);
+  std::printf("Smooth wave, first order: L1 %.4e %.4e, order %.3f\n", err[0], err[1], o);
+  EXPECT_GT(o, 0.8);
+  EXPECT_LT(o, 1.3);
+}
+
+TEST(Conservation, ClosedBoxMassToRoundOff) {
+  // Sod with reflective walls on every face: nothing leaves the box.
+  auto scene =
+      test::load_scene("sod_x.yaml", {"boundaries.y=reflective", "boundaries.z=reflective"});
+  auto r = test::run_scene(scene);
+  ASSERT_TRUE(r.result.ok);
+  const double dm = (r.result.end.mass - r.result.start.mass) / r.result.start.mass;
+  const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
+  std::printf(
+      "closed box: relative mass change %.3e, total energy change %.3e, momentum x "
+      "%.3e\n",
+      dm, de, r.result.end.momentum[0]);
+  EXPECT_LT(std::abs(dm), 1e-13);
+  EXPECT_LT(std::abs(de), 1e-3);
+  EXPECT_LT(std::abs(r.result.end.momentum[1]), 1e-14);
+}
+
+TEST(Extremes, LeBlancStaysPositive) {
+  auto r = test::run_scene(test::load_scene("leblanc.yaml"));
+  ASSERT_TRUE(r.result.ok) << r.result.health.what;
+  EXPECT_NEAR(r.result.time, 6.0, 1e-12);
+  const Profile p = profile_x(r);
+  const double rmin = *std::min_element(p.rho.begin(), p.rho.end());
+  const double emin = *std::min_element(p.e.begin(), p.e.end());
+  std::printf("LeBlanc: %ld cycles, min rho %.3e, min e %.3e\n", r.result.cycles, rmin, emin);
+  EXPECT_GT(rmin, 0);
+  EXPECT_GT(emin, 0);
+  // Exact shock: x = 3 + 6 * 0.8291 = 7.975. Staggered schemes run the LeBlanc shock ahead
+  // at coarse resolution (the contact's internal-energy error); seen here: 0.37 ahead at 360
+  // cells and 0.18 at 720, i.e. first-order convergence. The bound is for 360 cells.
+  const double g = 5.0 / 3.0;
+  const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
+  const double exact_shock = 3 + 6 * rs.right_head_speed();
+  const double x_shock = crossing(p, 0.5 * (1e-3 + rs.rho_star_right()), -1);
+  std::printf("LeBlanc shock at %.3f (exact %.3f)\n", x_shock, exact_shock);
+  EXPECT_NEAR(x_shock, exact_shock, 0.45);
+}
+
+TEST(Extremes, Problem123StaysPositive) {
+  auto r = test::run_scene(test::load_scene("test123.yaml"));
+  ASSERT_TRUE(r.result.ok) << r.result.health.what;
+  const Profile p = profile_x(r);
+  const double rmin = *std::min_element(p.rho.begin(), p.rho.end());
+  const double emin = *std::min_element(p.e.begin(), p.e.end());
+  const exact::Riemann rs({1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 1.4, 1.4);
+  std::printf("123: %ld cycles, min rho %.3e (exact centre %.3e), min e %.3e\n", r.result.cycles,
+              rmin, rs.rho_star_left(), emin);
+  EXPECT_GT(rmin, 0);
+  EXPECT_GT(emin, 0);
+  EXPECT_LT(l1_sod(p, rs, 0.5, 0.15), 0.05);
+}
