@@ -1,0 +1,14 @@
+// STREAM triad (McCalpin) in Kokkos, measured in the same process as the kernels it is compared
+// with, so the bandwidth figure and the kernel figures see the same machine state.
+#pragma once
+
+namespace mp::perf {
+
+struct Stream {
+  double triad_gbs = 0;  // best of the repetitions, 3 arrays x 8 bytes per element counted
+  double elements = 0;
+};
+
+Stream stream_triad(long elements, int repetitions);
+
+}  // namespace mp::perf
