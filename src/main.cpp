@@ -5,6 +5,8 @@
 #include <Kokkos_Core.hpp>
 #include <cstdio>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "config/scene.hpp"
 #include "core/error.hpp"
@@ -14,8 +16,13 @@ int main(int argc, char** argv) {
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  // Kokkos takes its own --kokkos-* options out of argv first.
-  Kokkos::initialize(argc, argv);
+  // Kokkos sees only its own --kokkos-* options (it would also answer a plain --help); the
+  // command line parser sees the rest.
+  std::vector<char*> kargs{argv[0]}, args{argv[0]};
+  for (int i = 1; i < argc; ++i)
+    (std::string(argv[i]).rfind("--kokkos", 0) == 0 ? kargs : args).push_back(argv[i]);
+  int kargc = static_cast<int>(kargs.size());
+  Kokkos::initialize(kargc, kargs.data());
   int rc = 0;
   {
     CLI::App app{
@@ -26,14 +33,16 @@ int main(int argc, char** argv) {
     mp::CommandLine cl;
     app.add_option("scene", cl.scene, "YAML scene deck")->required()->check(CLI::ExistingFile);
     app.add_option("--set", cl.overrides,
-                   "override a deck value, e.g. --set mesh.cells=[64,64,64] (repeatable)");
+                   "override a deck value, e.g. --set mesh.cells=[64,64,64] (repeatable)")
+        ->allow_extra_args(false)
+        ->take_all();
     app.add_option("-o,--output", cl.output, "output directory (default: the deck's output.dir)");
     app.add_flag("-q,--quiet", cl.quiet, "no per-cycle log lines");
     app.add_flag("--check", cl.check_only, "validate the deck and the decomposition, then exit");
     app.set_version_flag("-V,--version", std::string("minipagosa ") + MINIPAGOSA_VERSION +
                                              " (Kokkos " + std::to_string(KOKKOS_VERSION) + ")");
     try {
-      app.parse(argc, argv);
+      app.parse(static_cast<int>(args.size()), args.data());
       rc = mp::run(cl);
     } catch (const CLI::ParseError& e) {
       // --help and --version exit 0; any other command-line error is bad input (exit code 2).

@@ -348,3 +348,18 @@ TEST(Mesh, BoundaryNames) {
 }
 
 }  // namespace
+
+TEST(Mesh, FallsBackToAFeasibleSplit) {
+  // 40x3x3: MPI_Dims_create would cut a 3-cell axis on 4 or 8 ranks; only x can be split.
+  const int np = world_size();
+  MeshSpec s = make(40, 3, 3);
+  Errors e("40x3x3 fallback");
+  try {
+    Mesh m(s, MPI_COMM_WORLD);
+    if (m.dims()[0] != np || m.dims()[1] != 1 || m.dims()[2] != 1)
+      e.fail("dims %dx%dx%d, expected %dx1x1", m.dims()[0], m.dims()[1], m.dims()[2], np);
+  } catch (const std::exception& ex) {
+    e.fail("threw: %s", ex.what());
+  }
+  EXPECT_EQ(e.total(), 0);
+}

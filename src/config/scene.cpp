@@ -1,5 +1,6 @@
 #include "config/scene.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -92,6 +93,34 @@ void read_shape(const DeckNode& r, const Scene& s, ShapeSpec& shape) {
   }
 }
 
+// Cell centres of the global mesh inside a shape (searched within its bounding box).
+long count_cell_centres(const MeshSpec& m, const ShapeSpec& shape) {
+  int lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    const double h = (m.hi[d] - m.lo[d]) / m.cells[d];
+    double a = m.lo[d], b = m.hi[d];
+    if (shape.kind == "box") {
+      a = shape.lo[d];
+      b = shape.hi[d];
+    } else if (shape.kind == "sphere") {
+      a = shape.center[d] - shape.radius;
+      b = shape.center[d] + shape.radius;
+    }
+    lo[d] = std::max(0, static_cast<int>(std::floor((a - m.lo[d]) / h - 0.5)));
+    hi[d] = std::min(m.cells[d], static_cast<int>(std::ceil((b - m.lo[d]) / h + 0.5)));
+  }
+  long n = 0;
+  for (int k = lo[2]; k < hi[2]; ++k)
+    for (int j = lo[1]; j < hi[1]; ++j)
+      for (int i = lo[0]; i < hi[0]; ++i) {
+        const double x = m.lo[0] + (i + 0.5) * (m.hi[0] - m.lo[0]) / m.cells[0];
+        const double y = m.lo[1] + (j + 0.5) * (m.hi[1] - m.lo[1]) / m.cells[1];
+        const double z = m.lo[2] + (k + 0.5) * (m.hi[2] - m.lo[2]) / m.cells[2];
+        if (shape.contains(x, y, z)) ++n;
+      }
+  return n;
+}
+
 void read_regions(const DeckNode& root, Scene& s) {
   const DeckNode list = root.child("regions");
   if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of regions");
@@ -137,6 +166,8 @@ void read_regions(const DeckNode& root, Scene& s) {
       reg.velocity_center = rv.get_real3("center", -kHuge, kHuge, {0, 0, 0});
     }
     reg.deposit = r.get_real("deposit", 0, kHuge, 0);
+    if (reg.deposit > 0 && count_cell_centres(s.mesh, reg.shape) == 0)
+      r.child("deposit").fail("the region holds no cell centre to deposit energy in; enlarge it");
     if (r.has("wave")) {
       const DeckNode wv = r.child("wave");
       wv.expect_keys({"amplitude", "axis"});

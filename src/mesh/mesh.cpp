@@ -57,6 +57,29 @@ Mesh::Mesh(const MeshSpec& spec, MPI_Comm comm) : spec_(spec) {
         if (spec.cells[order[b]] > spec.cells[order[a]]) std::swap(order[a], order[b]);
     int sorted[3] = {dims[0], dims[1], dims[2]};
     for (int a = 0; a < 3; ++a) dims[order[a]] = sorted[a];
+    // When that split leaves a block thinner than the halo (a long thin box, say), take the
+    // feasible factorisation with the least halo surface instead.
+    auto feasible = [&](const int* p) {
+      for (int d = 0; d < 3; ++d)
+        if (spec.cells[d] / p[d] < ng) return false;
+      return true;
+    };
+    if (!feasible(dims)) {
+      double best = -1;
+      for (int px = 1; px <= world_size; ++px)
+        for (int py = 1; px * py <= world_size; ++py) {
+          if (world_size % (px * py) != 0) continue;
+          const int p[3] = {px, py, world_size / (px * py)};
+          if (!feasible(p)) continue;
+          double surface = 0;  // ghost faces added by the cuts
+          for (int d = 0; d < 3; ++d)
+            surface += double(p[d] - 1) * spec.cells[(d + 1) % 3] * spec.cells[(d + 2) % 3];
+          if (best < 0 || surface < best) {
+            best = surface;
+            for (int d = 0; d < 3; ++d) dims[d] = p[d];
+          }
+        }
+    }
   }
   for (int d = 0; d < 3; ++d) {
     dims_[d] = dims[d];

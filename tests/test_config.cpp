@@ -1,0 +1,355 @@
+// Strict deck reading: every bad input is an InputError naming file:line, the full key path and
+// a specific hint; --set overrides are reported as such; every shipped deck parses.
+#include <dirent.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "config/deck.hpp"
+#include "config/scene.hpp"
+#include "core/error.hpp"
+
+namespace {
+
+// A valid deck; the tests replace single lines, so line numbers below refer to this listing.
+const std::vector<std::string> kBase = {
+    "scene: unit",                                 // 1
+    "description: a unit-test deck",               // 2
+    "mesh:",                                       // 3
+    "  cells: [4, 4, 4]",                          // 4
+    "  lo: [0, 0, 0]",                             // 5
+    "  hi: [1, 1, 1]",                             // 6
+    "boundaries:",                                 // 7
+    "  x: reflective",                             // 8
+    "  y: periodic",                               // 9
+    "  z: {lo: outflow, hi: reflective}",          // 10
+    "time:",                                       // 11
+    "  end: 0.1",                                  // 12
+    "  cfl: 0.5",                                  // 13
+    "numerics:",                                   // 14
+    "  advection: second",                         // 15
+    "  ke_fix: true",                              // 16
+    "  viscosity: {linear: 0.2, quadratic: 1.0}",  // 17
+    "materials:",                                  // 18
+    "  - name: gas",                               // 19
+    "    eos: ideal_gas",                          // 20
+    "    gamma: 1.4",                              // 21
+    "regions:",                                    // 22
+    "  - material: gas",                           // 23
+    "    shape: all",                              // 24
+    "    density: 1.0",                            // 25
+    "    pressure: 1.0",                           // 26
+    "  - material: gas",                           // 27
+    "    shape: box",                              // 28
+    "    lo: [0, 0, 0]",                           // 29
+    "    hi: [0.5, 1, 1]",                         // 30
+    "    density: 2.0",                            // 31
+    "    pressure: 2.0",                           // 32
+    "  - material: gas",                           // 33
+    "    shape: sphere",                           // 34
+    "    center: [0.5, 0.5, 0.5]",                 // 35
+    "    radius: 0.2",                             // 36
+    "    density: 1.0",                            // 37
+    "    energy: 3.0",                             // 38
+    "output:",                                     // 39
+    "  dir: out",                                  // 40
+    "  write: false",                              // 41
+};
+
+// The base deck with lines replaced (1-based; "" blanks a line and keeps the numbering).
+std::string deck(const std::map<int, std::string>& edits = {}) {
+  std::string text;
+  for (std::size_t i = 0; i < kBase.size(); ++i) {
+    const auto it = edits.find(static_cast<int>(i) + 1);
+    text += (it != edits.end() ? it->second : kBase[i]) + "\n";
+  }
+  return text;
+}
+
+// The base deck with lines first..last blanked.
+std::string without(int first, int last) {
+  std::map<int, std::string> edits;
+  for (int l = first; l <= last; ++l) edits[l] = "";
+  return deck(edits);
+}
+
+// The InputError message read_scene gives; a test failure if there is none.
+std::string error_of(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  try {
+    const mp::Scene s = mp::read_scene(mp::Deck::parse(text, "deck.yaml", overrides));
+    ADD_FAILURE() << "no InputError for deck:\n" << text;
+  } catch (const mp::InputError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not an InputError: " << e.what();
+  }
+  return "";
+}
+
+// The message holds every one of `parts`.
+void expect_holds(const std::string& message, const std::vector<std::string>& parts) {
+  for (const auto& p : parts)
+    EXPECT_NE(message.find(p), std::string::npos) << "'" << p << "' missing from: " << message;
+}
+
+}  // namespace
+
+TEST(Deck, BaseDeckIsValid) {
+  const mp::Scene s = mp::read_scene(mp::Deck::parse(deck(), "deck.yaml"));
+  EXPECT_EQ(s.name, "unit");
+  EXPECT_EQ(s.file, "deck.yaml");
+  EXPECT_EQ(s.mesh.cells, (std::array<int, 3>{4, 4, 4}));
+  EXPECT_EQ(s.mesh.bc[0][0], mp::BoundaryKind::Reflective);
+  EXPECT_EQ(s.mesh.bc[1][1], mp::BoundaryKind::Periodic);
+  EXPECT_EQ(s.mesh.bc[2][0], mp::BoundaryKind::Outflow);
+  EXPECT_EQ(s.mesh.bc[2][1], mp::BoundaryKind::Reflective);
+  EXPECT_DOUBLE_EQ(s.time.end, 0.1);
+  EXPECT_EQ(s.numerics.advection, "second");
+  ASSERT_EQ(s.regions.size(), 3u);
+  EXPECT_EQ(s.regions[1].shape.kind, "box");
+  EXPECT_TRUE(s.regions[1].has_pressure);
+  EXPECT_EQ(s.regions[2].shape.kind, "sphere");
+  EXPECT_FALSE(s.regions[2].has_pressure);
+  EXPECT_DOUBLE_EQ(s.regions[2].energy, 3.0);
+  EXPECT_FALSE(s.output.write);
+}
+
+TEST(Deck, UnknownKeys) {
+  expect_holds(error_of(deck({{2, "descripton: x"}})),
+               {"deck.yaml:2:", "key 'descripton'", "did you mean 'description'"});
+  expect_holds(error_of(deck({{4, "  cels: [4, 4, 4]"}})),
+               {"deck.yaml:4:", "key 'mesh.cels'", "did you mean 'cells'"});
+  expect_holds(error_of(deck({{17, "  viscosity: {linear: 0.2, quadratc: 1.0}"}})),
+               {"deck.yaml:17:", "key 'numerics.viscosity.quadratc'", "did you mean 'quadratic'"});
+  expect_holds(error_of(deck({{25, "    densty: 1.0"}})),
+               {"deck.yaml:25:", "key 'regions.0.densty'", "did you mean 'density'"});
+  expect_holds(error_of(deck({{37, "    dens: 1.0"}})),
+               {"deck.yaml:37:", "key 'regions.2.dens'", "did you mean 'density'"});
+  expect_holds(error_of(deck({{21, "    gama: 1.4"}})),
+               {"deck.yaml:21:", "key 'materials.0.gama'", "did you mean 'gamma'"});
+  expect_holds(error_of(deck({{41, "  writ: false"}})),
+               {"deck.yaml:41:", "key 'output.writ'", "did you mean 'write'"});
+}
+
+TEST(Deck, WrongTypes) {
+  expect_holds(error_of(deck({{13, "  cfl: fast"}})),
+               {"deck.yaml:13:", "key 'time.cfl'", "expected a number, got 'fast'"});
+  expect_holds(error_of(deck({{6, "  hi: [1, 1]"}})),
+               {"deck.yaml:6:", "key 'mesh.hi'", "expected a list of 3 numbers"});
+  expect_holds(error_of(deck({{4, "  cells: [4, 4]"}})),
+               {"deck.yaml:4:", "key 'mesh.cells'", "expected a list of 3 integers"});
+  expect_holds(error_of(deck({{4, "  cells: [4, 4.5, 4]"}})),
+               {"deck.yaml:4:", "key 'mesh.cells.1'", "expected an integer, got '4.5'"});
+  expect_holds(
+      error_of(deck({{16, "  ke_fix: yes please"}})),
+      {"deck.yaml:16:", "key 'numerics.ke_fix'", "expected true or false, got 'yes please'"});
+  expect_holds(error_of(deck({{12, "  end: [1, 2]"}})),
+               {"deck.yaml:12:", "key 'time.end'", "expected a number"});
+  expect_holds(error_of(deck({{3, "mesh: 4"}, {4, ""}, {5, ""}, {6, ""}})),
+               {"deck.yaml:3:", "key 'mesh'", "expected a map"});
+  expect_holds(error_of(deck({{1, "scene: bad name!"}})),
+               {"deck.yaml:1:", "key 'scene'", "only letters, digits"});
+}
+
+TEST(Deck, OutOfRange) {
+  expect_holds(error_of(deck({{13, "  cfl: 1.5"}})),
+               {"deck.yaml:13:", "key 'time.cfl'", "value 1.5 is out of range [0.001, 1]"});
+  expect_holds(error_of(deck({{25, "    density: -1"}})),
+               {"deck.yaml:25:", "key 'regions.0.density'", "value -1 is out of range"});
+  expect_holds(error_of(deck({{31, "    density: 0"}})),
+               {"deck.yaml:31:", "key 'regions.1.density'", "density must be positive"});
+  expect_holds(error_of(deck({{21, "    gamma: 0.5"}})),
+               {"deck.yaml:21:", "key 'materials.0.gamma'", "value 0.5 is out of range"});
+  expect_holds(error_of(deck({{4, "  cells: [0, 4, 4]"}})),
+               {"deck.yaml:4:", "key 'mesh.cells.0'", "value 0 is out of range [1, "});
+  expect_holds(error_of(deck({{12, "  end: 0"}})),
+               {"deck.yaml:12:", "key 'time.end'", "end time must be positive"});
+  expect_holds(error_of(deck({{12, "  end: .inf"}})),
+               {"deck.yaml:12:", "key 'time.end'", "expected a finite number"});
+  expect_holds(error_of(deck({{36, "    radius: 0"}})),
+               {"deck.yaml:36:", "key 'regions.2.radius'", "sphere radius must be positive"});
+}
+
+TEST(Deck, EnumerationErrors) {
+  expect_holds(
+      error_of(deck({{15, "  advection: thrid"}})),
+      {"deck.yaml:15:", "key 'numerics.advection'", "'thrid' is not one of: second, first"});
+  expect_holds(
+      error_of(deck({{8, "  x: reflect"}})),
+      {"deck.yaml:8:", "key 'boundaries.x'",
+       "'reflect' is not one of: reflective, outflow, periodic", "did you mean 'reflective'"});
+  expect_holds(error_of(deck({{10, "  z: {lo: outflow, hi: periodc}"}})),
+               {"deck.yaml:10:", "key 'boundaries.z.hi'", "did you mean 'periodic'"});
+  expect_holds(error_of(deck({{20, "    eos: ideal"}})),
+               {"deck.yaml:20:", "key 'materials.0.eos'", "'ideal' is not one of: ideal_gas"});
+  expect_holds(error_of(deck({{28, "    shape: cube"}})),
+               {"deck.yaml:28:", "key 'regions.1.shape'", "not one of: all, box, sphere"});
+}
+
+TEST(Deck, ImpossibleGeometry) {
+  expect_holds(error_of(deck({{6, "  hi: [1, 0, 1]"}})),
+               {"deck.yaml:6:", "key 'mesh.hi'", "must exceed the lower corner along y"});
+  expect_holds(error_of(deck({{30, "    hi: [0.5, 1, 0]"}})),
+               {"deck.yaml:30:", "key 'regions.1.hi'", "must exceed its lower corner along z"});
+  expect_holds(error_of(deck({{29, "    lo: [2, 0, 0]"}, {30, "    hi: [3, 1, 1]"}})),
+               {"deck.yaml:29:", "key 'regions.1.lo'", "box lies outside the mesh"});
+  expect_holds(error_of(deck({{35, "    center: [5, 5, 5]"}})),
+               {"deck.yaml:35:", "key 'regions.2.center'", "sphere lies outside the mesh"});
+  expect_holds(error_of(deck({{10, "  z: {lo: periodic, hi: reflective}"}})),
+               {"deck.yaml:10:", "key 'boundaries.z'", "periodic must be set on both faces"});
+}
+
+TEST(Deck, MissingRequiredKeys) {
+  expect_holds(error_of(without(3, 6)), {"deck.yaml:1:", "key 'mesh'", "missing required key"});
+  expect_holds(error_of(without(12, 12)),
+               {"deck.yaml:13:", "key 'time.end'", "missing required key 'end'"});
+  expect_holds(error_of(without(11, 13)), {"deck.yaml:1:", "key 'time'", "missing required"});
+  expect_holds(error_of(without(18, 21)), {"deck.yaml:1:", "key 'materials'", "missing required"});
+  expect_holds(error_of(without(22, 38)), {"deck.yaml:1:", "key 'regions'", "missing required"});
+  expect_holds(error_of(deck({{4, ""}})),
+               {"deck.yaml:5:", "key 'mesh.cells'", "missing required key 'cells'"});
+  std::map<int, std::string> empty_regions{{22, "regions: []"}};
+  for (int l = 23; l <= 38; ++l) empty_regions[l] = "";
+  expect_holds(error_of(deck(empty_regions)),
+               {"deck.yaml:22:", "key 'regions'", "expected a non-empty list of regions"});
+  expect_holds(error_of(deck({{24, "    shape: box\n    lo: [0, 0, 0]\n    hi: [1, 1, 1]"}})),
+               {"deck.yaml:23:", "key 'regions.0'", "the first region must be 'shape: all'"});
+  expect_holds(error_of(deck({{26, ""}})),
+               {"deck.yaml:23:", "key 'regions.0'", "exactly one of 'pressure' or 'energy'"});
+}
+
+TEST(Deck, MaterialsAndRegions) {
+  expect_holds(error_of(deck({{27, "  - material: gaz"}})),
+               {"deck.yaml:27:", "key 'regions.1.material'", "unknown material 'gaz'",
+                "did you mean 'gas'"});
+  expect_holds(error_of(deck({{26, "    pressure: 1.0\n    energy: 2.0"}})),
+               {"deck.yaml:23:", "key 'regions.0'", "exactly one of 'pressure' or 'energy'"});
+  expect_holds(
+      error_of(deck({{21, "    gamma: 1.4\n  - name: gas\n    eos: ideal_gas\n    gamma: 2"}})),
+      {"deck.yaml:22:", "key 'materials.1.name'", "defined twice"});
+  expect_holds(
+      error_of(deck({{21, "    gamma: 1.4\n  - name: air\n    eos: ideal_gas\n    gamma: 2"}})),
+      {"deck.yaml:19:", "key 'materials'", "one material per scene"});
+}
+
+TEST(Deck, YamlSyntaxError) {
+  std::string m = error_of(deck({{9, "  y: [periodic"}}));
+  expect_holds(m, {"deck.yaml:", "YAML syntax error"});
+  m = error_of(deck({{13, "  cfl: 0.5: 2"}}));
+  expect_holds(m, {"deck.yaml:13:", "YAML syntax error"});
+  m = error_of(deck({{16, "   ke_fix: true"}}));
+  expect_holds(m, {"deck.yaml:16:", "YAML syntax error"});
+  expect_holds(error_of("- just\n- a list\n"), {"deck.yaml", "must be a YAML map"});
+}
+
+TEST(Deck, OverrideErrors) {
+  std::string m = error_of(deck(), {"mesh.cells=[0,8,8]"});
+  expect_holds(m, {"--set mesh.cells=[0,8,8]", "key 'mesh.cells.0'", "out of range"});
+  EXPECT_EQ(m.find("deck.yaml"), std::string::npos) << m;
+  expect_holds(error_of(deck(), {"mesh.cells=[8,8]"}),
+               {"--set mesh.cells=[8,8]", "key 'mesh.cells'", "expected a list of 3 integers"});
+  expect_holds(error_of(deck(), {"time.cfl=2"}), {"--set time.cfl=2", "key 'time.cfl'", "range"});
+  expect_holds(error_of(deck(), {"numerics.advection=thrid"}),
+               {"--set numerics.advection=thrid", "second, first"});
+  // an unknown key given only on the command line
+  expect_holds(error_of(deck(), {"mesh.cels=[8,8,8]"}),
+               {"--set mesh.cels=[8,8,8]", "key 'mesh.cels'", "did you mean 'cells'"});
+  expect_holds(error_of(deck(), {"tim.end=1"}),
+               {"--set tim.end=1", "key 'tim'", "did you mean 'time'"});
+  expect_holds(
+      error_of(deck(), {"numerics.viscosty.linear=1"}),
+      {"--set numerics.viscosty.linear=1", "key 'numerics.viscosty'", "did you mean 'viscosity'"});
+  // malformed overrides
+  expect_holds(error_of(deck(), {"mesh.cells"}), {"--set mesh.cells", "expected key=value"});
+  expect_holds(error_of(deck(), {"=3"}), {"--set =3", "expected key=value"});
+  expect_holds(error_of(deck(), {"mesh..cells=3"}), {"--set mesh..cells=3", "empty key"});
+  expect_holds(error_of(deck(), {"regions.7.density=2"}),
+               {"--set regions.7.density=2", "no element 7"});
+  expect_holds(error_of(deck(), {"mesh.cells=[1,2"}), {"--set mesh.cells=[1,2", "YAML syntax"});
+  expect_holds(error_of(deck(), {"regions.first.density=1"}),
+               {"--set regions.first.density=1", "not inside a map"});
+  // a scalar overridden by a map is then the wrong type, reported against the override
+  expect_holds(error_of(deck(), {"scene.x=1"}),
+               {"--set scene.x=1", "key 'scene'", "expected a string"});
+}
+
+TEST(Deck, OverridesChangeValues) {
+  const mp::Scene s = mp::read_scene(mp::Deck::parse(
+      deck(), "deck.yaml",
+      {"mesh.cells=[8,8,8]", "regions.1.density=2.5", "numerics.advection=first", "time.end=0.02",
+       "numerics.viscosity.linear=0", "output.write=true", "boundaries.x=outflow"}));
+  EXPECT_EQ(s.mesh.cells, (std::array<int, 3>{8, 8, 8}));
+  EXPECT_DOUBLE_EQ(s.regions[1].density, 2.5);
+  EXPECT_EQ(s.numerics.advection, "first");
+  EXPECT_DOUBLE_EQ(s.time.end, 0.02);
+  EXPECT_DOUBLE_EQ(s.numerics.q_linear, 0.0);
+  EXPECT_DOUBLE_EQ(s.numerics.q_quadratic, 1.0);
+  EXPECT_TRUE(s.output.write);
+  EXPECT_EQ(s.mesh.bc[0][0], mp::BoundaryKind::Outflow);
+  // an override may add a key the deck leaves out
+  const mp::Scene t =
+      mp::read_scene(mp::Deck::parse(without(14, 17), "deck.yaml", {"numerics.advection=first"}));
+  EXPECT_EQ(t.numerics.advection, "first");
+}
+
+TEST(Deck, EditDistanceAndNearest) {
+  EXPECT_EQ(mp::edit_distance("", ""), 0);
+  EXPECT_EQ(mp::edit_distance("", "abc"), 3);
+  EXPECT_EQ(mp::edit_distance("abc", ""), 3);
+  EXPECT_EQ(mp::edit_distance("cells", "cells"), 0);
+  EXPECT_EQ(mp::edit_distance("cels", "cells"), 1);
+  EXPECT_EQ(mp::edit_distance("kitten", "sitting"), 3);
+  EXPECT_EQ(mp::edit_distance("thrid", "third"), 2);
+  EXPECT_EQ(mp::edit_distance("abc", "cba"), mp::edit_distance("cba", "abc"));
+  EXPECT_EQ(mp::nearest("cels", {"cells", "lo", "hi", "ranks"}), "cells");
+  EXPECT_EQ(mp::nearest("reflect", {"reflective", "outflow", "periodic"}), "reflective");
+  EXPECT_EQ(mp::nearest("gaz", {"gas", "air"}), "gas");
+  EXPECT_EQ(mp::nearest("x", {}), "");
+}
+
+TEST(Deck, ShippedDecksParse) {
+  const char* env = std::getenv("MINIPAGOSA_SOURCE_DIR");
+  const std::string dir = std::string(env ? env : "..") + "/configs";
+  DIR* d = opendir(dir.c_str());
+  ASSERT_NE(d, nullptr) << "cannot open " << dir;
+  std::vector<std::string> files;
+  while (const dirent* ent = readdir(d)) {
+    const std::string name = ent->d_name;
+    if (name.size() > 5 && name.compare(name.size() - 5, 5, ".yaml") == 0)
+      files.push_back(dir + "/" + name);
+  }
+  closedir(d);
+  std::sort(files.begin(), files.end());
+  EXPECT_GE(files.size(), 8u);
+  for (const auto& f : files) {
+    SCOPED_TRACE(f);
+    try {
+      const mp::Scene s = mp::read_scene(mp::Deck::load(f));
+      EXPECT_FALSE(s.name.empty());
+      EXPECT_GT(s.time.end, 0.0);
+      EXPECT_FALSE(s.regions.empty());
+      EXPECT_EQ(s.regions[0].shape.kind, "all");
+      // and the usual test-size overrides apply to each of them (16 cells: at 8 the Sedov
+      // deposit sphere would hold no cell centre, which is rightly an input error)
+      const mp::Scene small =
+          mp::read_scene(mp::Deck::load(f, {"mesh.cells=[16,16,16]", "numerics.advection=first"}));
+      EXPECT_EQ(small.mesh.cells, (std::array<int, 3>{16, 16, 16}));
+      EXPECT_EQ(small.numerics.advection, "first");
+    } catch (const mp::InputError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
+TEST(Deck, MissingFile) {
+  try {
+    mp::Deck::load("/nonexistent/dir/deck.yaml");
+    ADD_FAILURE() << "no InputError";
+  } catch (const mp::InputError& e) {
+    expect_holds(e.what(), {"/nonexistent/dir/deck.yaml", "cannot open"});
+  }
+}
