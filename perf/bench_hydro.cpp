@@ -12,12 +12,14 @@
 #include <thread>
 
 #include "config/scene.hpp"
+#include "core/mpi_env.hpp"
 #include "driver/simulation.hpp"
 #include "stream.hpp"
 
 using namespace mp;
 
 int main(int argc, char** argv) {
+  mp::prepare_mpi_environment();
   MPI_Init(&argc, &argv);
   Kokkos::initialize(argc, argv);
   int rc = 0;

@@ -10,9 +10,11 @@
 
 #include "config/scene.hpp"
 #include "core/error.hpp"
+#include "core/mpi_env.hpp"
 #include "driver/run.hpp"
 
 int main(int argc, char** argv) {
+  mp::prepare_mpi_environment();
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -5,7 +5,10 @@
 
 #include <Kokkos_Core.hpp>
 
+#include "core/mpi_env.hpp"
+
 int main(int argc, char** argv) {
+  mp::prepare_mpi_environment();
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
