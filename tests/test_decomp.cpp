@@ -89,3 +89,9 @@ TEST(Decomposition, PeriodicWaveIdenticalOn1_2_4Ranks) {
   compare_rank_counts(test::load_scene(
       "smooth_wave.yaml", {"mesh.cells=[24,6,6]", "mesh.hi=[1,0.25,0.25]", "time.end=0.2"}));
 }
+
+TEST(Decomposition, UnsplitSedovIdenticalOn1_2_4Ranks) {
+  compare_rank_counts(
+      test::load_scene("sedov.yaml", {"mesh.cells=[17,14,13]", "regions.1.radius=0.15",
+                                      "time.end=0.05", "numerics.remap=unsplit"}));
+}

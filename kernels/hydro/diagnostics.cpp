@@ -19,6 +19,7 @@ TimeStep Hydro::time_step(Real dt_old, Real t, Real t_end) const {
   const Geometry g = mesh_.geometry();
   auto c = s_.c, q = s_.q, rho = s_.rho, u = s_.u, v = s_.v, w = s_.w;
   const Real cfl = opt_.cfl;
+  const bool unsplit = opt_.unsplit;
   const int nlx = g.nl[0], nly = g.nl[1], ng = g.ng;
   using MinLoc = Kokkos::MinLoc<Real, long>;
   typename MinLoc::value_type best;
@@ -37,6 +38,10 @@ TimeStep Hydro::time_step(Real dt_old, Real t, Real t_end) const {
             }
         Real dt = FLT_MAX;
         for (int d = 0; d < 3; ++d) dt = mmin(dt, g.dx[d] / (ceff + vmax[d] + Real(1e-30)));
+        // an unsplit remap moves material across all faces at once: bound the Courant sum
+        if (unsplit)
+          dt = mmin(dt,
+                    1 / (vmax[0] / g.dx[0] + vmax[1] / g.dx[1] + vmax[2] / g.dx[2] + Real(1e-30)));
         dt *= cfl;
         if (dt < acc.val) {
           acc.val = dt;

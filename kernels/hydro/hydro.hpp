@@ -24,6 +24,9 @@ struct Options {
   // energy (DeBar's correction, see Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992),
   // so total energy is conserved to round-off.
   bool ke_fix = true;
+  // One remap step over all axes instead of three split sweeps (symmetric under permutations
+  // of the axes; the time step then keeps the sum of the axes' Courant numbers below cfl).
+  bool unsplit = false;
 };
 
 struct State {
@@ -38,7 +41,7 @@ struct State {
   Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
   // faces, stored in node-extent views: face d at index i sits at node coordinate i along d
   std::array<Field3, 3> vol_flux;
-  Field3 mass_flux, energy_flux;  // of the current sweep
+  std::array<Field3, 3> mass_flux, energy_flux;  // through faces normal to x, y, z
 };
 
 struct TimeStep {
@@ -85,7 +88,9 @@ class Hydro {
   void viscosity();
   Health lagrange(Real dt);
   void remap(long cycle);
-  void remap_sweep(int d, const std::array<bool, 3>& pending);
+  // One remap step over the faces normal to `axes`; `pending` marks the axes whose volume
+  // change is not yet remapped (the step's own included).
+  void remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending);
 
  private:
   void exchange_cells();

@@ -28,8 +28,16 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::IdealGas eos
   s_.ke_loss = mesh.new_field("ke_loss", N);
   for (int d = 0; d < 3; ++d)
     s_.vol_flux[d] = mesh.new_field(std::string("volume_flux_") + "xyz"[d], N);
-  s_.mass_flux = mesh.new_field("mass_flux", N);
-  s_.energy_flux = mesh.new_field("energy_flux", N);
+  for (int d = 0; d < 3; ++d) {
+    // split sweeps use one pair of flux arrays in turn
+    if (d == 0 || opt.unsplit) {
+      s_.mass_flux[d] = mesh.new_field(std::string("mass_flux_") + "xyz"[d], N);
+      s_.energy_flux[d] = mesh.new_field(std::string("energy_flux_") + "xyz"[d], N);
+    } else {
+      s_.mass_flux[d] = s_.mass_flux[0];
+      s_.energy_flux[d] = s_.energy_flux[0];
+    }
+  }
 }
 
 void Hydro::exchange_cells() {

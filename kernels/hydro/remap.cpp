@@ -1,7 +1,10 @@
-// The remap phase: directionally split advection back to the fixed mesh. Each sweep moves
-// mass and internal energy through the faces normal to one axis with van Leer-limited face
-// values, then moves momentum through the faces of the dual (node-centred) mesh with mass
-// fluxes averaged from the cell faces, so mass and momentum are both conserved to round-off.
+// The remap phase: advection back to the fixed mesh. A step moves mass and internal energy
+// through the faces normal to a set of axes with van Leer-limited face values, then moves
+// momentum through the faces of the dual (node-centred) mesh with mass fluxes averaged from the
+// cell faces, so mass and momentum are both conserved to round-off.
+//   split (default): three steps of one axis each, order x,y,z / z,y,x alternating by cycle;
+//   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
+//            permutations of the axes; stable for a Courant-number sum below one).
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
@@ -9,30 +12,37 @@
 namespace mp::hydro {
 
 void Hydro::remap(long cycle) {
+  if (opt_.unsplit) {
+    remap_step({true, true, true}, {true, true, true});
+    return;
+  }
   // Alternate the sweep order every cycle (x,y,z then z,y,x) to cancel the splitting bias.
   const int order[2][3] = {{0, 1, 2}, {2, 1, 0}};
   std::array<bool, 3> pending{{true, true, true}};
   for (int s = 0; s < 3; ++s) {
     const int d = order[cycle % 2][s];
-    remap_sweep(d, pending);
+    std::array<bool, 3> axes{{false, false, false}};
+    axes[d] = true;
+    remap_step(axes, pending);
     pending[d] = false;
   }
 }
 
-void Hydro::remap_sweep(int d, const std::array<bool, 3>& pending) {
+void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending) {
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
   const int ord = opt_.order;
   auto rho = s_.rho, e = s_.e, pre = s_.pre_vol, post = s_.post_vol;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  auto vf = s_.vol_flux[d];
-  auto mf = s_.mass_flux, ef = s_.energy_flux, nm = s_.node_mass;
+  auto mfx = s_.mass_flux[0], mfy = s_.mass_flux[1], mfz = s_.mass_flux[2];
+  auto efx = s_.energy_flux[0], efy = s_.energy_flux[1], efz = s_.energy_flux[2];
+  auto nm = s_.node_mass;
   const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
             ez = mesh_.extent(Centering::Cell, 2);
   const Real px = pending[0] ? 1 : 0, py = pending[1] ? 1 : 0, pz = pending[2] ? 1 : 0;
-  const int sx = d == 0, sy = d == 1, sz = d == 2;  // unit step along the sweep axis
+  const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
 
-  // Cell volume before this sweep (the Lagrangian volume less the sweeps already done) and
+  // Cell volume before this step (the Lagrangian volume less the steps already done) and
   // after it.
   Kokkos::parallel_for(
       "remap::volumes", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -40,10 +50,10 @@ void Hydro::remap_sweep(int d, const std::array<bool, 3>& pending) {
                    dvz = fz(i, j, k + 1) - fz(i, j, k);
         const Real v0 = vol + px * dvx + py * dvy + pz * dvz;
         pre(i, j, k) = v0;
-        post(i, j, k) = v0 - (sx * dvx + sy * dvy + sz * dvz);
+        post(i, j, k) = v0 - (ax * dvx + ay * dvy + az * dvz);
       });
 
-  // Dual-cell (node) mass before the sweep.
+  // Dual-cell (node) mass before the step.
   Kokkos::parallel_for(
       "remap::node_mass", Policy3({1, 1, 1}, {ex, ey, ez}), KOKKOS_LAMBDA(int i, int j, int k) {
         Real m = 0;
@@ -54,8 +64,13 @@ void Hydro::remap_sweep(int d, const std::array<bool, 3>& pending) {
         nm(i, j, k) = Real(0.125) * m;
       });
 
-  // Mass and energy through the owned faces normal to d (all rows across).
-  {
+  // Mass and energy through the owned faces normal to each axis of the step (all rows across),
+  // then the ghost faces from the neighbours.
+  for (int d = 0; d < 3; ++d) {
+    if (!axes[d]) continue;
+    auto vf = s_.vol_flux[d];
+    auto mf = s_.mass_flux[d], ef = s_.energy_flux[d];
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
     const auto fr = mesh_.range(Centering::Node, Region::Owned, d);
     int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
     lo[d] = fr[0];
@@ -78,77 +93,94 @@ void Hydro::remap_sweep(int d, const std::array<bool, 3>& pending) {
           mf(i, j, k) = m;
           ef(i, j, k) = m * efv;
         });
+    HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
+    HaloField efh{ef, Centering::Cell, {1, 1, 1}};
+    mfh.face_axis = efh.face_axis = d;
+    mfh.parity[d] = efh.parity[d] = -1;  // a flux normal to a wall changes sign in the mirror
+    halo_.exchange({mfh, efh});
   }
-  HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
-  mfh.face_axis = d;
-  mfh.parity[d] = -1;  // a flux normal to a wall changes sign in the mirror
-  HaloField efh{ef, Centering::Cell, {1, 1, 1}};
-  efh.face_axis = d;
-  efh.parity[d] = -1;
-  halo_.exchange({mfh, efh});
 
   // Cells: new mass and energy; one ghost layer is updated too, for the dual-mesh masses.
   Kokkos::parallel_for(
       "remap::cell_update", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
         const Real m0 = rho(i, j, k) * pre(i, j, k);
-        const Real m1 = m0 + mf(i, j, k) - mf(i + sx, j + sy, k + sz);
-        const Real e1 = (e(i, j, k) * m0 + ef(i, j, k) - ef(i + sx, j + sy, k + sz)) / m1;
+        Real dm = 0, de = 0;
+        if (ax > 0) {
+          dm += mfx(i, j, k) - mfx(i + 1, j, k);
+          de += efx(i, j, k) - efx(i + 1, j, k);
+        }
+        if (ay > 0) {
+          dm += mfy(i, j, k) - mfy(i, j + 1, k);
+          de += efy(i, j, k) - efy(i, j + 1, k);
+        }
+        if (az > 0) {
+          dm += mfz(i, j, k) - mfz(i, j, k + 1);
+          de += efz(i, j, k) - efz(i, j, k + 1);
+        }
+        const Real m1 = m0 + dm;
+        e(i, j, k) = (e(i, j, k) * m0 + de) / m1;
         rho(i, j, k) = m1 / post(i, j, k);
-        e(i, j, k) = e1;
       });
 
-  // Momentum through the dual faces normal to d. The dual face at cell c (between nodes c and
-  // c+1) carries the average of the mass fluxes through the two cell faces bounding c, over the
-  // four cells around the node line.
+  // Momentum through the dual faces normal to each axis d. The dual face at cell c (between
+  // nodes c and c+1) carries the average of the mass fluxes through the two cell faces bounding
+  // c, over the four cells around the node line.
   auto u = s_.u, v = s_.v, w = s_.w, un = s_.ub, vn = s_.vb, wn = s_.wb, kel = s_.ke_loss;
   Kokkos::parallel_for(
       "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        // unit steps along the two transverse axes
-        const int tx1 = d == 0 ? 0 : 1, ty1 = d == 0 ? 1 : 0, tz1 = 0;
-        const int tx2 = 0, ty2 = d == 2 ? 1 : 0, tz2 = d == 2 ? 0 : 1;
-        // dual mass flux through the dual face at cell index c = node - 1 + side
-        auto dual_flux = [&](int side) {
-          const int ci = i + (side - 1) * sx, cj = j + (side - 1) * sy, ck = k + (side - 1) * sz;
-          Real f = 0;
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a) {
-              const int oi = ci - a * tx1 - b * tx2, oj = cj - a * ty1 - b * ty2,
-                        ok = ck - a * tz1 - b * tz2;
-              f += mf(oi, oj, ok) + mf(oi + sx, oj + sy, ok + sz);
-            }
-          return Real(0.125) * f;
-        };
-        const Real f_lo = dual_flux(0), f_hi = dual_flux(1);
-        const Real m0 = nm(i, j, k);
-        const Real m1 = m0 + f_lo - f_hi;
-        // Momentum flux through a dual face: node value on the upwind side, limited slope.
-        // The kinetic energy carried by the same face value lets the loss be measured.
-        auto face_u = [&](const Field3& phi, int side, Real f) {
-          const int c0i = i + (side - 1) * sx, c0j = j + (side - 1) * sy,
-                    c0k = k + (side - 1) * sz;  // node below the dual face
-          const int s = f > 0 ? 0 : 1;          // donor: node below (0) or above (1)
-          const int di = c0i + s * sx, dj = c0j + s * sy, dk = c0k + s * sz;
-          const int st = f > 0 ? 1 : -1;  // wind direction in index steps
-          const Real up = phi(di - st * sx, dj - st * sy, dk - st * sz);
-          const Real dn = phi(di + st * sx, dj + st * sy, dk + st * sz);
-          const Real sigma = mabs(f) / nm(di, dj, dk);
-          return face_value(up, phi(di, dj, dk), dn, sigma, ord);
-        };
-        const Real ul = face_u(u, 0, f_lo), uh = face_u(u, 1, f_hi);
-        const Real vl = face_u(v, 0, f_lo), vh = face_u(v, 1, f_hi);
-        const Real wl = face_u(w, 0, f_lo), wh = face_u(w, 1, f_hi);
         const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k);
-        const Real u1 = (u0 * m0 + f_lo * ul - f_hi * uh) / m1;
-        const Real v1 = (v0 * m0 + f_lo * vl - f_hi * vh) / m1;
-        const Real w1 = (w0 * m0 + f_lo * wl - f_hi * wh) / m1;
+        const Real m0 = nm(i, j, k);
+        Real m1 = m0, pu = u0 * m0, pv = v0 * m0, pw = w0 * m0, ke_flux = 0;
+        for (int d = 0; d < 3; ++d) {
+          if (!(d == 0 ? ax > 0 : d == 1 ? ay > 0 : az > 0)) continue;
+          const auto& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
+          const int sx = d == 0, sy = d == 1, sz = d == 2;
+          // unit steps along the two transverse axes
+          const int tx1 = d == 0 ? 0 : 1, ty1 = d == 0 ? 1 : 0, tz1 = 0;
+          const int tx2 = 0, ty2 = d == 2 ? 1 : 0, tz2 = d == 2 ? 0 : 1;
+          // dual mass flux through the dual face at cell index c = node - 1 + side
+          auto dual_flux = [&](int side) {
+            const int ci = i + (side - 1) * sx, cj = j + (side - 1) * sy, ck = k + (side - 1) * sz;
+            Real f = 0;
+            for (int b = 0; b < 2; ++b)
+              for (int a = 0; a < 2; ++a) {
+                const int oi = ci - a * tx1 - b * tx2, oj = cj - a * ty1 - b * ty2,
+                          ok = ck - a * tz1 - b * tz2;
+                f += mf(oi, oj, ok) + mf(oi + sx, oj + sy, ok + sz);
+              }
+            return Real(0.125) * f;
+          };
+          // Node value on the upwind side of a dual face, with a limited slope.
+          auto face_u = [&](const Field3& phi, int side, Real f) {
+            const int c0i = i + (side - 1) * sx, c0j = j + (side - 1) * sy,
+                      c0k = k + (side - 1) * sz;  // node below the dual face
+            const int s = f > 0 ? 0 : 1;          // donor: node below (0) or above (1)
+            const int di = c0i + s * sx, dj = c0j + s * sy, dk = c0k + s * sz;
+            const int st = f > 0 ? 1 : -1;  // wind direction in index steps
+            const Real up = phi(di - st * sx, dj - st * sy, dk - st * sz);
+            const Real dn = phi(di + st * sx, dj + st * sy, dk + st * sz);
+            const Real sigma = mabs(f) / nm(di, dj, dk);
+            return face_value(up, phi(di, dj, dk), dn, sigma, ord);
+          };
+          const Real f_lo = dual_flux(0), f_hi = dual_flux(1);
+          const Real ul = face_u(u, 0, f_lo), uh = face_u(u, 1, f_hi);
+          const Real vl = face_u(v, 0, f_lo), vh = face_u(v, 1, f_hi);
+          const Real wl = face_u(w, 0, f_lo), wh = face_u(w, 1, f_hi);
+          m1 += f_lo - f_hi;
+          pu += f_lo * ul - f_hi * uh;
+          pv += f_lo * vl - f_hi * vh;
+          pw += f_lo * wl - f_hi * wh;
+          // kinetic energy carried by the same face values, to measure the remap's loss
+          ke_flux += Real(0.5) *
+                     (f_lo * (ul * ul + vl * vl + wl * wl) - f_hi * (uh * uh + vh * vh + wh * wh));
+        }
+        const Real u1 = pu / m1, v1 = pv / m1, w1 = pw / m1;
         un(i, j, k) = u1;
         vn(i, j, k) = v1;
         wn(i, j, k) = w1;
         const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
         const Real ke1 = Real(0.5) * m1 * (u1 * u1 + v1 * v1 + w1 * w1);
-        const Real ke_in = Real(0.5) * f_lo * (ul * ul + vl * vl + wl * wl);
-        const Real ke_out = Real(0.5) * f_hi * (uh * uh + vh * vh + wh * wh);
-        kel(i, j, k) = ke0 + ke_in - ke_out - ke1;
+        kel(i, j, k) = ke0 + ke_flux - ke1;
       });
   if (opt_.ke_fix) {
     // Each node hands 1/8 of its loss to each of its 8 cells; owned cells read owned nodes only.

@@ -215,7 +215,8 @@ Scene read_scene(const Deck& deck) {
 
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
-    n.expect_keys({"advection", "viscosity", "ke_fix"});
+    n.expect_keys({"advection", "remap", "viscosity", "ke_fix"});
+    s.numerics.remap = n.get_enum("remap", {"split", "unsplit"}, s.numerics.remap);
     s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
     s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
     if (n.has("viscosity")) {

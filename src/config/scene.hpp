@@ -53,6 +53,7 @@ struct TimeSpec {
 
 struct NumericsSpec {
   std::string advection = "second";  // second | first
+  std::string remap = "split";       // split (alternating sweeps) | unsplit
   double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
   double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
   bool ke_fix = true;                // return the kinetic energy the momentum remap dissipates

@@ -62,6 +62,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.growth = Real(scene_.time.growth);
   opt.dt_max = Real(scene_.time.dt_max);
   opt.ke_fix = scene_.numerics.ke_fix;
+  opt.unsplit = scene_.numerics.remap == "unsplit";
   eos::IdealGas gas{Real(scene_.materials[0].gamma)};
   hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, gas);
 }
@@ -73,7 +74,7 @@ std::vector<std::string> Simulation::modules() const {
   m.push_back("hydro: staggered Lagrange (predictor-corrector) + split remap, " +
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
-              " advection");
+              " advection, " + scene_.numerics.remap + " remap");
   m.push_back("eos: ideal gas (" + scene_.materials[0].name +
               ", gamma=" + std::to_string(scene_.materials[0].gamma) + ")");
   m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
