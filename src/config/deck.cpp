@@ -23,15 +23,19 @@ int edit_distance(const std::string& a, const std::string& b) {
 }
 
 std::string nearest(const std::string& word, const std::vector<std::string>& candidates) {
+  // A truncated key ("dens" for "density") is the likeliest slip: among candidates that begin
+  // with the word's first three letters, take the closest; otherwise the closest of all.
   std::string best;
   int best_d = 1 << 30;
-  for (const auto& c : candidates) {
-    const int d = edit_distance(word, c);
-    if (d < best_d) {
-      best_d = d;
-      best = c;
+  for (int pass = 0; pass < 2 && best.empty(); ++pass)
+    for (const auto& c : candidates) {
+      if (pass == 0 && (word.size() < 3 || c.compare(0, 3, word, 0, 3) != 0)) continue;
+      const int d = edit_distance(word, c);
+      if (d < best_d) {
+        best_d = d;
+        best = c;
+      }
     }
-  }
   return best;
 }
 

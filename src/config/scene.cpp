@@ -69,43 +69,98 @@ void read_materials(const DeckNode& root, Scene& s) {
     list.fail("this build runs one material per scene (multi-material mixing is not built yet)");
 }
 
-void read_shape(const DeckNode& r, const Scene& s, ShapeSpec& shape) {
-  shape.kind = r.get_enum("shape", {"all", "box", "sphere"}, "all");
-  const auto& lo = s.mesh.lo;
-  const auto& hi = s.mesh.hi;
-  if (shape.kind == "box") {
-    shape.lo = r.get_real3("lo", -kHuge, kHuge);
-    shape.hi = r.get_real3("hi", -kHuge, kHuge);
-    for (int d = 0; d < 3; ++d) {
-      if (!(shape.hi[d] > shape.lo[d]))
-        r.child("hi").fail(std::string("box upper corner must exceed its lower corner along ") +
-                           "xyz"[d]);
-      if (shape.hi[d] <= lo[d] || shape.lo[d] >= hi[d])
-        r.child("lo").fail("box lies outside the mesh");
-    }
-  } else if (shape.kind == "sphere") {
-    shape.center = r.get_real3("center", -kHuge, kHuge);
-    shape.radius = r.get_real("radius", 0, kHuge);
-    if (!(shape.radius > 0)) r.child("radius").fail("sphere radius must be positive");
+const std::vector<std::string> kShapeKinds = {"all", "box", "sphere", "cylinder", "cone", "shell"};
+const std::vector<std::string> kShapeKeys = {
+    "lo", "hi", "center", "radius", "base", "top", "radius_top", "inner_radius", "outer_radius"};
+
+void copy3(const std::array<double, 3>& v, double* out) {
+  for (int d = 0; d < 3; ++d) out[d] = v[d];
+}
+
+// One primitive from the keys of `n` (its kind under `kind_key`).
+geom::Primitive read_primitive(const DeckNode& n, const std::string& kind) {
+  geom::Primitive p;
+  if (kind == "all") {
+    p.kind = geom::kAll;
+  } else if (kind == "box") {
+    p.kind = geom::kBox;
+    const auto lo = n.get_real3("lo", -kHuge, kHuge), hi = n.get_real3("hi", -kHuge, kHuge);
     for (int d = 0; d < 3; ++d)
-      if (shape.center[d] + shape.radius <= lo[d] || shape.center[d] - shape.radius >= hi[d])
-        r.child("center").fail("sphere lies outside the mesh");
+      if (!(hi[d] > lo[d]))
+        n.child("hi").fail(std::string("box upper corner must exceed its lower corner along ") +
+                           "xyz"[d]);
+    copy3(lo, p.a);
+    copy3(hi, p.b);
+  } else if (kind == "sphere") {
+    p.kind = geom::kSphere;
+    copy3(n.get_real3("center", -kHuge, kHuge), p.a);
+    p.r0 = n.get_real("radius", 0, kHuge);
+    if (!(p.r0 > 0)) n.child("radius").fail("sphere radius must be positive");
+  } else if (kind == "shell") {
+    p.kind = geom::kShell;
+    copy3(n.get_real3("center", -kHuge, kHuge), p.a);
+    p.r0 = n.get_real("inner_radius", 0, kHuge);
+    p.r1 = n.get_real("outer_radius", 0, kHuge);
+    if (!(p.r1 > p.r0)) n.child("outer_radius").fail("outer radius must exceed the inner radius");
+  } else {  // cylinder, cone
+    p.kind = kind == "cylinder" ? geom::kCylinder : geom::kCone;
+    const auto base = n.get_real3("base", -kHuge, kHuge), top = n.get_real3("top", -kHuge, kHuge);
+    double len2 = 0;
+    for (int d = 0; d < 3; ++d) len2 += (top[d] - base[d]) * (top[d] - base[d]);
+    if (!(len2 > 0)) n.child("top").fail("the axis from 'base' to 'top' has zero length");
+    copy3(base, p.a);
+    copy3(top, p.b);
+    p.r0 = n.get_real("radius", 0, kHuge);
+    if (!(p.r0 > 0)) n.child("radius").fail(kind + " radius must be positive");
+    if (kind == "cone") p.r1 = n.get_real("radius_top", 0, kHuge, 0);
   }
+  return p;
+}
+
+void read_shape(const DeckNode& r, const Scene& s, ShapeSpec& shape) {
+  shape.kind = r.get_enum("shape", kShapeKinds, "all");
+  shape.shape.primary = read_primitive(r, shape.kind);
+  const char* lists[2] = {"union", "minus"};
+  for (const char* key : lists) {
+    if (!r.has(key)) continue;
+    const DeckNode list = r.child(key);
+    if (!list.is_sequence() || list.size() == 0) list.fail("expected a list of shapes");
+    if (list.size() > std::size_t(geom::kMaxTerms))
+      list.fail("at most " + std::to_string(geom::kMaxTerms) + " shapes");
+    for (const DeckNode& item : list.items()) {
+      std::vector<std::string> keys = kShapeKeys;
+      keys.insert(keys.begin(), "shape");
+      item.expect_keys(keys);
+      const std::string kind = item.get_enum("shape", kShapeKinds);
+      if (kind == "all") item.child("shape").fail("'all' cannot be combined");
+      const geom::Primitive p = read_primitive(item, kind);
+      if (std::string(key) == "union") {
+        shape.shape.add[shape.shape.n_add++] = p;
+      } else {
+        shape.shape.remove[shape.shape.n_remove++] = p;
+      }
+    }
+  }
+  if (shape.kind == "all") return;
+  double lo[3], hi[3];
+  shape.shape.bounds(lo, hi);
+  // reported at the key that places the shape
+  const std::string where = shape.kind == "box"                                ? "lo"
+                            : shape.kind == "cylinder" || shape.kind == "cone" ? "base"
+                                                                               : "center";
+  for (int d = 0; d < 3; ++d)
+    if (hi[d] <= s.mesh.lo[d] || lo[d] >= s.mesh.hi[d])
+      r.child(where).fail("the " + shape.kind + " lies outside the mesh");
 }
 
 // Cell centres of the global mesh inside a shape (searched within its bounding box).
 long count_cell_centres(const MeshSpec& m, const ShapeSpec& shape) {
   int lo[3], hi[3];
+  double blo[3], bhi[3];
+  shape.shape.bounds(blo, bhi);
   for (int d = 0; d < 3; ++d) {
     const double h = (m.hi[d] - m.lo[d]) / m.cells[d];
-    double a = m.lo[d], b = m.hi[d];
-    if (shape.kind == "box") {
-      a = shape.lo[d];
-      b = shape.hi[d];
-    } else if (shape.kind == "sphere") {
-      a = shape.center[d] - shape.radius;
-      b = shape.center[d] + shape.radius;
-    }
+    const double a = std::max(blo[d], m.lo[d]), b = std::min(bhi[d], m.hi[d]);
     lo[d] = std::max(0, static_cast<int>(std::floor((a - m.lo[d]) / h - 0.5)));
     hi[d] = std::min(m.cells[d], static_cast<int>(std::ceil((b - m.lo[d]) / h + 0.5)));
   }
@@ -128,8 +183,11 @@ void read_regions(const DeckNode& root, Scene& s) {
   for (const auto& m : s.materials) names.push_back(m.name);
   bool first = true;
   for (const DeckNode& r : list.items()) {
-    r.expect_keys({"material", "shape", "lo", "hi", "center", "radius", "density", "pressure",
-                   "energy", "velocity", "radial_velocity", "deposit", "wave"});
+    std::vector<std::string> keys = {"material",        "shape",    "union",  "minus",
+                                     "density",         "pressure", "energy", "velocity",
+                                     "radial_velocity", "deposit",  "wave"};
+    keys.insert(keys.end(), kShapeKeys.begin(), kShapeKeys.end());
+    r.expect_keys(keys);
     RegionSpec reg;
     reg.material = r.get_string("material");
     bool found = false;
@@ -182,14 +240,6 @@ void read_regions(const DeckNode& root, Scene& s) {
 
 }  // namespace
 
-bool ShapeSpec::contains(double x, double y, double z) const {
-  if (kind == "all") return true;
-  if (kind == "box")
-    return x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
-  const double dx = x - center[0], dy = y - center[1], dz = z - center[2];
-  return dx * dx + dy * dy + dz * dz < radius * radius;
-}
-
 Scene read_scene(const Deck& deck) {
   const DeckNode root = deck.root();
   root.expect_keys({"scene", "description", "mesh", "boundaries", "time", "numerics", "materials",
@@ -215,7 +265,8 @@ Scene read_scene(const Deck& deck) {
 
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
-    n.expect_keys({"advection", "remap", "viscosity", "ke_fix"});
+    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples"});
+    s.numerics.samples = static_cast<int>(n.get_int("samples", 1, 16, s.numerics.samples));
     s.numerics.remap = n.get_enum("remap", {"split", "unsplit"}, s.numerics.remap);
     s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
     s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "config/deck.hpp"
+#include "materials/geometry.hpp"
 #include "mesh/mesh.hpp"
 
 namespace mp {
@@ -16,11 +17,9 @@ struct MaterialSpec {
 };
 
 struct ShapeSpec {
-  std::string kind = "all";          // all | box | sphere
-  std::array<double, 3> lo{}, hi{};  // box
-  std::array<double, 3> center{};    // sphere
-  double radius = 0;                 // sphere
-  bool contains(double x, double y, double z) const;
+  std::string kind = "all";  // of the primary: all | box | sphere | cylinder | cone | shell
+  geom::Shape shape;         // (primary ∪ union terms) − minus terms
+  bool contains(double x, double y, double z) const { return shape.contains(x, y, z); }
 };
 
 struct RegionSpec {
@@ -57,6 +56,7 @@ struct NumericsSpec {
   double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
   double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
   bool ke_fix = true;                // return the kinetic energy the momentum remap dissipates
+  int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
 };
 
 struct OutputSpec {

@@ -13,6 +13,7 @@
 #include "core/math.hpp"
 #include "io/hdf5_writer.hpp"
 #include "io/log.hpp"
+#include "materials/geometry.hpp"
 
 namespace mp {
 
@@ -20,19 +21,19 @@ namespace {
 
 // A region as the painting kernel sees it.
 struct RegionDev {
-  int kind;  // 0 all, 1 box, 2 sphere
-  double lo[3], hi[3], center[3], radius;
+  geom::Shape shape;
+  bool all;
   double rho, e, vel[3], vcenter[3];
   int radial;
   double wave_amp, wave_lo, wave_len;
   int wave_axis;
 
   KOKKOS_INLINE_FUNCTION bool contains(double x, double y, double z) const {
-    if (kind == 0) return true;
-    if (kind == 1)
-      return x >= lo[0] && x < hi[0] && y >= lo[1] && y < hi[1] && z >= lo[2] && z < hi[2];
-    const double dx = x - center[0], dy = y - center[1], dz = z - center[2];
-    return dx * dx + dy * dy + dz * dz < radius * radius;
+    return shape.contains(x, y, z);
+  }
+  // Volume fraction of the cell with low corner lo and sizes h.
+  KOKKOS_INLINE_FUNCTION double fraction(const double lo[3], const double h[3], int samples) const {
+    return all ? 1.0 : geom::sampled_fraction(shape, lo, h, samples);
   }
 };
 
@@ -86,15 +87,12 @@ void Simulation::initialize() {
   const eos::IdealGas gas{Real(scene_.materials[0].gamma)};
   for (const auto& r : scene_.regions) {
     RegionDev d{};
-    d.kind = r.shape.kind == "all" ? 0 : r.shape.kind == "box" ? 1 : 2;
+    d.shape = r.shape.shape;
+    d.all = r.shape.kind == "all";
     for (int a = 0; a < 3; ++a) {
-      d.lo[a] = r.shape.lo[a];
-      d.hi[a] = r.shape.hi[a];
-      d.center[a] = r.shape.center[a];
       d.vel[a] = r.velocity[a];
       d.vcenter[a] = r.velocity_center[a];
     }
-    d.radius = r.shape.radius;
     d.rho = r.density;
     d.e = r.has_pressure ? double(gas.energy(Real(r.density), Real(r.pressure))) : r.energy;
     d.radial = r.radial_velocity ? 1 : 0;
@@ -113,26 +111,36 @@ void Simulation::initialize() {
   auto& s = hydro_->state();
   auto rho = s.rho, e = s.e, u = s.u, v = s.v, w = s.w;
   const Geometry g = mesh_->geometry();
+  // Regions paint in order; a later region takes the volume fraction of the cell it covers
+  // (sub-cell sampled), mixing mass and internal energy with what was there.
+  const int samples = scene_.numerics.samples;
   Kokkos::parallel_for(
       "init::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double x = g.cell_center(0, i), y = g.cell_center(1, j), z = g.cell_center(2, k);
-        for (int n = 0; n < nreg; ++n)
-          if (dregs(n).contains(x, y, z)) {
-            const RegionDev& r = dregs(n);
-            double f = 1;
-            if (r.wave_amp > 0) {
-              // exact cell average of sin(2 pi (x - lo) / L) over the cell
-              const int a = r.wave_axis;
-              const int idx = a == 0 ? i : a == 1 ? j : k;
-              const double kw = 2 * M_PI / r.wave_len, h = g.dx[a];
-              const double x0 = g.node_coord(a, idx) - r.wave_lo, x1 = x0 + h;
-              f = 1 + r.wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) /
-                          (kw * h);
-            }
-            rho(i, j, k) = Real(r.rho * f);
-            // the wave is an entropy wave: pressure stays uniform
-            e(i, j, k) = Real(r.wave_amp > 0 ? r.e / f : r.e);
+        const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+        const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+        double rho_c = 0, e_c = 0;
+        for (int n = 0; n < nreg; ++n) {
+          const RegionDev& r = dregs(n);
+          const double f = r.fraction(lo, h, samples);
+          if (f <= 0) continue;
+          double wf = 1;
+          if (r.wave_amp > 0) {
+            // exact cell average of sin(2 pi (x - lo) / L) over the cell
+            const int a = r.wave_axis;
+            const double kw = 2 * M_PI / r.wave_len;
+            const double x0 = lo[a] - r.wave_lo, x1 = x0 + h[a];
+            wf = 1 + r.wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) /
+                         (kw * h[a]);
           }
+          // the wave is an entropy wave: pressure stays uniform
+          const double rho_r = r.rho * wf, e_r = r.wave_amp > 0 ? r.e / wf : r.e;
+          const double m_old = (1 - f) * rho_c;
+          const double m_new = f * rho_r;
+          e_c = (m_old * e_c + m_new * e_r) / (m_old + m_new);
+          rho_c = m_old + m_new;
+        }
+        rho(i, j, k) = Real(rho_c);
+        e(i, j, k) = Real(e_c);
       });
   Kokkos::parallel_for(
       "init::nodes", mesh_->nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -160,24 +168,28 @@ void Simulation::initialize() {
     const double deposit = scene_.regions[n].deposit;
     if (deposit <= 0) continue;
     const RegionDev r = regs[n];
-    long count = 0;
+    double weight = 0;  // cells' volume fractions summed
     Kokkos::parallel_reduce(
-        "init::deposit_count", mesh_->cells(Region::Owned),
-        KOKKOS_LAMBDA(int i, int j, int k, long& c) {
-          if (r.contains(g.cell_center(0, i), g.cell_center(1, j), g.cell_center(2, k))) ++c;
+        "init::deposit_weight", mesh_->cells(Region::Owned),
+        KOKKOS_LAMBDA(int i, int j, int k, double& acc) {
+          const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+          const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+          acc += r.fraction(lo, h, samples);
         },
-        count);
-    long total = 0;
-    MPI_Allreduce(&count, &total, 1, MPI_LONG, MPI_SUM, mesh_->comm());
-    if (total == 0)
+        weight);
+    double total = 0;
+    MPI_Allreduce(&weight, &total, 1, MPI_DOUBLE, MPI_SUM, mesh_->comm());
+    if (!(total > 0))
       throw InputError(scene_.file + ": region " + std::to_string(n) +
-                       " deposits energy but contains no cell centre; enlarge it");
-    const double per_cell = deposit / double(total);
+                       " deposits energy but covers no cell; enlarge it");
+    const double per_volume_fraction = deposit / total;
     const double vol = g.cell_volume();
     Kokkos::parallel_for(
         "init::deposit", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          if (r.contains(g.cell_center(0, i), g.cell_center(1, j), g.cell_center(2, k)))
-            e(i, j, k) += Real(per_cell / (double(rho(i, j, k)) * vol));
+          const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+          const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+          const double f = r.fraction(lo, h, samples);
+          if (f > 0) e(i, j, k) += Real(per_volume_fraction * f / (double(rho(i, j, k)) * vol));
         });
   }
   hydro_->prepare();
