@@ -1,0 +1,122 @@
+// One trivially copyable EOS record per material, dispatching on its kind, so a device kernel can
+// hold a View<Eos*> of the materials in a problem and call pressure / sound_speed on any of them.
+//
+// Units: cm / g / us throughout (kernels/materials/library.hpp): rho g/cm^3, e cm^2/us^2,
+// p Mbar, c cm/us. Validity ranges: see the header of each EOS.
+#pragma once
+#include "core/math.hpp"
+#include "eos/ideal_gas.hpp"
+#include "eos/jwl.hpp"
+#include "eos/mie_gruneisen.hpp"
+#include "eos/polynomial.hpp"
+#include "eos/stiffened_gas.hpp"
+
+namespace mp::eos {
+
+enum EosKind : int {
+  kIdealGas = 0,      // params: gamma
+  kStiffenedGas = 1,  // params: gamma, p_inf
+  kMieGruneisen = 2,  // params: rho0, c0, s, gamma0
+  kPolynomial = 3,    // params: rho0, A1, A2, A3, B0, B1
+  kJwl = 4,           // params: rho0, A, B, R1, R2, omega
+};
+
+// Smallest c^2 handed out, (cm/us)^2, wherever the analytic c^2 is not positive.
+inline constexpr Real kSoundSpeed2Floor = Real(1e-24);
+
+struct Eos {
+  static constexpr int max_params = 8;
+  int kind = kIdealGas;
+  Real params[max_params] = {};
+
+  KOKKOS_INLINE_FUNCTION Real pressure(Real rho, Real e) const {
+    switch (kind) {
+      case kStiffenedGas:
+        return StiffenedGas{params[0], params[1]}.pressure(rho, e);
+      case kMieGruneisen:
+        return mie_gruneisen().pressure(rho, e);
+      case kPolynomial:
+        return polynomial().pressure(rho, e);
+      case kJwl:
+        return jwl().pressure(rho, e);
+      default:
+        return IdealGas{params[0]}.pressure(rho, e);
+    }
+  }
+  // Analytic c^2 = (dp/drho)_e + p/rho^2 (dp/de)_rho, unclamped.
+  KOKKOS_INLINE_FUNCTION Real sound_speed2(Real rho, Real e) const {
+    switch (kind) {
+      case kStiffenedGas:
+        return StiffenedGas{params[0], params[1]}.sound_speed2(rho, e);
+      case kMieGruneisen:
+        return mie_gruneisen().sound_speed2(rho, e);
+      case kPolynomial:
+        return polynomial().sound_speed2(rho, e);
+      case kJwl:
+        return jwl().sound_speed2(rho, e);
+      default:
+        return params[0] * (params[0] - 1) * e;  // gamma p / rho
+    }
+  }
+  // c, with c^2 clamped to kSoundSpeed2Floor: finite and positive for every finite (rho > 0, e).
+  KOKKOS_INLINE_FUNCTION Real sound_speed(Real rho, Real e) const {
+    return msqrt(mmax(sound_speed2(rho, e), kSoundSpeed2Floor));
+  }
+
+  KOKKOS_INLINE_FUNCTION MieGruneisen mie_gruneisen() const {
+    return MieGruneisen{params[0], params[1], params[2], params[3]};
+  }
+  KOKKOS_INLINE_FUNCTION Polynomial polynomial() const {
+    return Polynomial{params[0], params[1], params[2], params[3], params[4], params[5]};
+  }
+  KOKKOS_INLINE_FUNCTION Jwl jwl() const {
+    return Jwl{params[0], params[1], params[2], params[3], params[4], params[5]};
+  }
+};
+
+inline Eos make_eos(const IdealGas& g) {
+  Eos e;
+  e.kind = kIdealGas;
+  e.params[0] = g.gamma;
+  return e;
+}
+inline Eos make_eos(const StiffenedGas& g) {
+  Eos e;
+  e.kind = kStiffenedGas;
+  e.params[0] = g.gamma;
+  e.params[1] = g.p_inf;
+  return e;
+}
+inline Eos make_eos(const MieGruneisen& m) {
+  Eos e;
+  e.kind = kMieGruneisen;
+  e.params[0] = m.rho0;
+  e.params[1] = m.c0;
+  e.params[2] = m.s;
+  e.params[3] = m.gamma0;
+  return e;
+}
+inline Eos make_eos(const Polynomial& m) {
+  Eos e;
+  e.kind = kPolynomial;
+  e.params[0] = m.rho0;
+  e.params[1] = m.a1;
+  e.params[2] = m.a2;
+  e.params[3] = m.a3;
+  e.params[4] = m.b0;
+  e.params[5] = m.b1;
+  return e;
+}
+inline Eos make_eos(const Jwl& m) {
+  Eos e;
+  e.kind = kJwl;
+  e.params[0] = m.rho0;
+  e.params[1] = m.a;
+  e.params[2] = m.b;
+  e.params[3] = m.r1;
+  e.params[4] = m.r2;
+  e.params[5] = m.omega;
+  return e;
+}
+
+}  // namespace mp::eos

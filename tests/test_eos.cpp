@@ -1,0 +1,330 @@
+// EOS point functions and the materials library: thermodynamic consistency of c^2, the
+// Mie-Grueneisen Hugoniot against its Us-up line, the JWL CJ state, finite p and c at the
+// extremes, device dispatch. Units: cm, g, us -> Mbar (kernels/materials/library.hpp).
+#include <gtest/gtest.h>
+
+#include <Kokkos_Core.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "eos/eos.hpp"
+#include "materials/library.hpp"
+
+namespace {
+
+using mp::Real;
+using mp::eos::Eos;
+
+// Relative tolerance of the analytic c^2 against a centred difference of p along the isentrope
+// de = p/rho^2 drho with step h = 1e-4 rho (truncation O(h^2) ~ 1e-8, round-off ~ 1e-12 relative).
+constexpr double kC2Tol = 1e-6;
+constexpr double kStep = 1e-4;
+
+// One atmosphere in Mbar.
+constexpr double kAtm = 1.01325e-6;
+
+double isentropic_c2(const Eos& eos, double rho, double e) {
+  const double p = eos.pressure(rho, e);
+  const double h = kStep * rho;
+  const double de = p / (rho * rho) * h;
+  return (eos.pressure(rho + h, e + de) - eos.pressure(rho - h, e - de)) / (2 * h);
+}
+
+struct Case {
+  std::string name;
+  Eos eos;
+  double rho0;
+  std::vector<double> x;  // rho / rho0
+  std::vector<double> e;  // cm^2/us^2
+};
+
+// Polynomial fixture, not a library material: the coefficients are the mu-expansion of the
+// aluminium 6061-T6 Us-up Hugoniot (Steinberg values, library.cpp), A1 = rho0 c0^2,
+// A2 = A1 (2s - 1), A3 = A1 (s - 1)(3s - 1), with B0 = B1 = Gamma0.
+mp::eos::Polynomial polynomial_fixture() {
+  const double rho0 = 2.703, c0 = 0.524, s = 1.40, g0 = 1.97;
+  const double a1 = rho0 * c0 * c0;
+  return {rho0, a1, a1 * (2 * s - 1), a1 * (s - 1) * (3 * s - 1), g0, g0};
+}
+
+// JWL fixture, not a material: magnitudes typical of HMX-based products, used to test the JWL
+// algebra and the CJ solver. No library explosive is checked here until one is cited.
+mp::eos::Jwl jwl_fixture() {
+  return {1.8, 8.0, 0.2, 4.5, 1.3, 0.35};
+}
+constexpr double kJwlFixtureE0 = 0.1;  // Mbar cm^3/cm^3, per initial volume
+
+const std::vector<double> kSolidX = {0.8,  0.85, 0.9, 0.95, 0.999, 1.001,
+                                     1.05, 1.2,  1.5, 2.0,  2.5,   3.0};
+const std::vector<double> kSolidE = {0.0, 1e-3, 1e-2, 0.1};
+
+std::vector<Case> consistency_cases() {
+  std::vector<Case> cases;
+  for (const auto& name : mp::materials::material_names()) {
+    const auto* m = mp::materials::find_material(name);
+    Case c{name, mp::materials::make_eos(*m), m->rho0, {}, {}};
+    if (m->eos == "ideal_gas") {
+      // Strong expansion to 1e-3 rho0 and compression to 20 rho0, energies from 1e-2 to 1e4
+      // times that of the gas at 1 atm and rho0.
+      c.x = {1e-3, 1e-2, 0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
+      const double g = m->param("gamma");
+      const double e_atm = kAtm / ((g - 1) * m->rho0);
+      c.e = {1e-2 * e_atm, e_atm, 1e2 * e_atm, 1e4 * e_atm};
+    } else if (m->eos == "stiffened_gas") {
+      // Tension to 0.8 rho0, compression to 3 rho0; e above p_inf/rho keeps p + p_inf > 0.
+      c.x = {0.8, 0.9, 0.999, 1.001, 1.2, 1.5, 2.0, 3.0};
+      const double pinf = m->param("p_inf");
+      c.e = {1.01 * pinf / (0.8 * m->rho0), 2 * pinf / (0.8 * m->rho0), 10 * pinf / (0.8 * m->rho0),
+             100 * pinf / (0.8 * m->rho0)};
+    } else {
+      c.x = kSolidX;
+      c.e = kSolidE;
+    }
+    cases.push_back(c);
+  }
+  const auto poly = polynomial_fixture();
+  cases.push_back({"polynomial fixture", mp::eos::make_eos(poly), poly.rho0, kSolidX, kSolidE});
+  const auto jwl = jwl_fixture();
+  const double e0 = kJwlFixtureE0 / jwl.rho0;
+  cases.push_back({"jwl fixture",
+                   mp::eos::make_eos(jwl),
+                   jwl.rho0,
+                   {1e-3, 1e-2, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0, 1.3, 1.6, 2.0},
+                   {0.01 * e0, 0.1 * e0, e0, 3 * e0}});
+  return cases;
+}
+
+TEST(Eos, SoundSpeedMatchesIsentropicDifference) {
+  for (const auto& c : consistency_cases()) {
+    int checked = 0;
+    double worst = 0.0;
+    for (double x : c.x) {
+      for (double e : c.e) {
+        const double rho = x * c.rho0;
+        const double c2 = c.eos.sound_speed2(rho, e);
+        const double fd = isentropic_c2(c.eos, rho, e);
+        ASSERT_TRUE(std::isfinite(c2) && std::isfinite(fd)) << c.name << " x=" << x << " e=" << e;
+        ASSERT_GT(c2, 0.0) << c.name << " x=" << x << " e=" << e;
+        EXPECT_NEAR(fd / c2, 1.0, kC2Tol) << c.name << " x=" << x << " e=" << e;
+        worst = std::max(worst, std::abs(fd / c2 - 1.0));
+        const double cs = c.eos.sound_speed(rho, e);
+        EXPECT_DOUBLE_EQ(cs * cs, c2) << c.name;
+        ++checked;
+      }
+    }
+    EXPECT_GE(checked, 32) << c.name;
+    std::printf("  %-20s %3d states, max |c2_fd/c2 - 1| = %.2e\n", c.name.c_str(), checked, worst);
+  }
+}
+
+TEST(Eos, IdealAndStiffenedClosedForms) {
+  const Eos air = mp::eos::make_eos(mp::eos::IdealGas{1.4});
+  EXPECT_DOUBLE_EQ(air.pressure(1e-3, 2.0), 0.4 * 1e-3 * 2.0);
+  EXPECT_NEAR(air.sound_speed2(1e-3, 2.0), 1.4 * 0.4 * 2.0, 1e-15);
+  const mp::eos::StiffenedGas sg{4.4, 6e-3};
+  const Eos w = mp::eos::make_eos(sg);
+  const double rho = 1.1, e = 0.02;
+  const double p = w.pressure(rho, e);
+  EXPECT_NEAR(w.sound_speed2(rho, e), 4.4 * (p + 6e-3) / rho, 1e-14);
+  EXPECT_NEAR(sg.energy(rho, p), e, 1e-15);
+}
+
+TEST(Eos, MieGruneisenHugoniotReproducesUsUpLine) {
+  int materials = 0;
+  for (const auto& name : mp::materials::material_names()) {
+    const auto* m = mp::materials::find_material(name);
+    if (m->eos != "mie_gruneisen") continue;
+    ++materials;
+    const Eos eos = mp::materials::make_eos(*m);
+    const double rho0 = m->rho0, c0 = m->param("c0"), s = m->param("s");
+    EXPECT_NEAR(eos.pressure(rho0, 0.0), 0.0, 1e-15) << name;
+    for (double up : {0.001, 0.01, 0.03, 0.1, 0.2, 0.4}) {  // cm/us, 10 m/s .. 4 km/s
+      const double us = c0 + s * up;
+      const double rho = rho0 * us / (us - up);
+      const double ph = rho0 * us * up;
+      const double eh = 0.5 * up * up;
+      EXPECT_NEAR(eos.pressure(rho, eh), ph, 1e-12 * ph) << name << " up=" << up;
+    }
+  }
+  EXPECT_GE(materials, 5);
+}
+
+TEST(Eos, MieGruneisenBranchesAreContinuousAtRho0) {
+  const auto* cu = mp::materials::find_material("copper");
+  ASSERT_NE(cu, nullptr);
+  const Eos eos = mp::materials::make_eos(*cu);
+  for (double e : {0.0, 0.01, 0.1}) {
+    const double lo = cu->rho0 * (1 - 1e-9), hi = cu->rho0 * (1 + 1e-9);
+    // p changes by (dp/drho)_e drho = c0^2 drho across the 2e-9 rho0 gap; nothing more.
+    const double c02 = cu->param("c0") * cu->param("c0");
+    EXPECT_NEAR((eos.pressure(hi, e) - eos.pressure(lo, e)) / (c02 * (hi - lo)), 1.0, 1e-5);
+    EXPECT_NEAR(eos.sound_speed2(lo, e) / eos.sound_speed2(hi, e), 1.0, 1e-8);
+  }
+}
+
+TEST(Eos, JwlCjStateFromTangencyIsSonic) {
+  const auto j = jwl_fixture();
+  const Eos eos = mp::eos::make_eos(j);
+  const double e0 = kJwlFixtureE0 / j.rho0;
+  const auto cj = mp::eos::jwl_cj_state(j, e0);
+  std::printf("  jwl fixture CJ: D = %.5f cm/us, p = %.5f Mbar, rho = %.4f g/cc, u = %.5f cm/us\n",
+              cj.d, cj.p, cj.rho, cj.u);
+  // Plausible detonation: compressed products, D of order 0.8 cm/us, p_cj of order 0.3 Mbar.
+  EXPECT_GT(cj.rho, j.rho0);
+  EXPECT_GT(cj.d, 0.5);
+  EXPECT_LT(cj.d, 1.2);
+  // On the EOS, on the Rayleigh line and on the Hugoniot.
+  EXPECT_NEAR(eos.pressure(cj.rho, cj.e), cj.p, 1e-10 * cj.p);
+  EXPECT_NEAR(cj.p, j.rho0 * cj.d * cj.u, 1e-10 * cj.p);
+  EXPECT_NEAR(cj.u, cj.d * (1 - j.rho0 / cj.rho), 1e-12);
+  // CJ sound condition from the analytic c: c_cj + u_cj = D.
+  EXPECT_NEAR((eos.sound_speed(cj.rho, cj.e) + cj.u) / cj.d, 1.0, 1e-6);
+
+  // The handbook route (tabulated D and p_cj) lands on the same state.
+  const auto tab = mp::eos::jwl_cj_from_tabulated(j, e0, cj.d, cj.p);
+  EXPECT_NEAR(tab.rho / cj.rho, 1.0, 1e-9);
+  EXPECT_NEAR(eos.pressure(tab.rho, tab.e) / cj.p, 1.0, 1e-8);
+  EXPECT_NEAR((eos.sound_speed(tab.rho, tab.e) + tab.u) / cj.d, 1.0, 1e-6);
+}
+
+// Every cited JWL explosive in the library reproduces its tabulated CJ state to the accuracy of
+// a JWL fit. (No explosive is in the library yet: see library.cpp.)
+TEST(Eos, LibraryJwlMaterialsReproduceTabulatedCj) {
+  constexpr double kFitTol = 0.05;
+  for (const auto& name : mp::materials::material_names()) {
+    const auto* m = mp::materials::find_material(name);
+    if (m->eos != "jwl") continue;
+    const Eos eos = mp::materials::make_eos(*m);
+    const auto cj = mp::eos::jwl_cj_from_tabulated(eos.jwl(), m->param("E0") / m->rho0,
+                                                   m->param("D"), m->param("p_cj"));
+    EXPECT_NEAR(eos.pressure(cj.rho, cj.e) / cj.p, 1.0, kFitTol) << name;
+    EXPECT_NEAR((eos.sound_speed(cj.rho, cj.e) + cj.u) / cj.d, 1.0, kFitTol) << name;
+  }
+}
+
+std::vector<Eos> all_eos() {
+  std::vector<Eos> list;
+  for (const auto& name : mp::materials::material_names()) {
+    list.push_back(mp::materials::make_eos(*mp::materials::find_material(name)));
+  }
+  list.push_back(mp::eos::make_eos(polynomial_fixture()));
+  list.push_back(mp::eos::make_eos(jwl_fixture()));
+  return list;
+}
+
+double reference_density(const Eos& eos) {
+  // Gases and the stiffened gas carry no rho0 in their record: probe around 1 g/cm^3 and 1e-3.
+  switch (eos.kind) {
+    case mp::eos::kMieGruneisen:
+    case mp::eos::kPolynomial:
+    case mp::eos::kJwl:
+      return eos.params[0];
+    case mp::eos::kStiffenedGas:
+      return 1.0;
+    default:
+      return 1.225e-3;
+  }
+}
+
+const std::vector<double> kExtremeE = {0.0, 1e-8, 1e-4, 1e-2, 1.0, 1e2, 1e4};
+
+TEST(Eos, FiniteAtExtremesOfExpansionAndCompression) {
+  for (const auto& eos : all_eos()) {
+    const double rho0 = reference_density(eos);
+    for (int k = 0; k <= 60; ++k) {
+      const double x = std::pow(10.0, -6.0 + k * (6.0 + std::log10(5.0)) / 60.0);
+      for (double e : kExtremeE) {
+        const double p = eos.pressure(x * rho0, e);
+        const double c = eos.sound_speed(x * rho0, e);
+        ASSERT_TRUE(std::isfinite(p)) << "kind " << eos.kind << " x=" << x << " e=" << e;
+        ASSERT_TRUE(std::isfinite(c)) << "kind " << eos.kind << " x=" << x << " e=" << e;
+        ASSERT_GT(c, 0.0) << "kind " << eos.kind << " x=" << x << " e=" << e;
+      }
+    }
+  }
+}
+
+TEST(Eos, DeviceDispatchMatchesHost) {
+  const auto list = all_eos();
+  const int n = static_cast<int>(list.size());
+  Kokkos::View<Eos*, mp::MemSpace> eos("eos", n);
+  auto host = Kokkos::create_mirror_view(eos);
+  for (int i = 0; i < n; ++i) host(i) = list[i];
+  Kokkos::deep_copy(eos, host);
+
+  // Same states as the extremes test, on the device: count non-finite p or c, or c <= 0.
+  constexpr int nx = 61;
+  const int ne = static_cast<int>(kExtremeE.size());
+  Kokkos::View<double*, mp::MemSpace> energies("e", ne);
+  auto energies_h = Kokkos::create_mirror_view(energies);
+  for (int i = 0; i < ne; ++i) energies_h(i) = kExtremeE[i];
+  Kokkos::deep_copy(energies, energies_h);
+  Kokkos::View<double*, mp::MemSpace> rho0("rho0", n);
+  auto rho0_h = Kokkos::create_mirror_view(rho0);
+  for (int i = 0; i < n; ++i) rho0_h(i) = reference_density(list[i]);
+  Kokkos::deep_copy(rho0, rho0_h);
+
+  int bad = 0;
+  const double span = 6.0 + std::log10(5.0);
+  Kokkos::parallel_reduce(
+      "test_eos::device_extremes", Kokkos::RangePolicy<mp::ExecSpace>(0, n * nx * ne),
+      KOKKOS_LAMBDA(int idx, int& count) {
+        const int m = idx / (nx * ne);
+        const int k = (idx / ne) % nx;
+        const int j = idx % ne;
+        const double rho = rho0(m) * MP_KOKKOS_MATH::pow(10.0, -6.0 + k * span / (nx - 1));
+        const double p = eos(m).pressure(rho, energies(j));
+        const double c = eos(m).sound_speed(rho, energies(j));
+        if (!mp::misfinite(p) || !mp::misfinite(c) || !(c > 0)) ++count;
+      },
+      bad);
+  EXPECT_EQ(bad, 0);
+
+  // One state per material: device p and c^2 equal the host ones.
+  Kokkos::View<double* [2], mp::MemSpace> out("out", n);
+  Kokkos::parallel_for(
+      "test_eos::device_state", Kokkos::RangePolicy<mp::ExecSpace>(0, n), KOKKOS_LAMBDA(int m) {
+        const double rho = 1.3 * rho0(m);
+        out(m, 0) = eos(m).pressure(rho, 0.01);
+        out(m, 1) = eos(m).sound_speed2(rho, 0.01);
+      });
+  auto out_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+  for (int m = 0; m < n; ++m) {
+    const double rho = 1.3 * rho0_h(m);
+    EXPECT_NEAR(out_h(m, 0), list[m].pressure(rho, 0.01),
+                1e-12 * std::abs(list[m].pressure(rho, 0.01)) + 1e-300);
+    EXPECT_NEAR(out_h(m, 1), list[m].sound_speed2(rho, 0.01),
+                1e-12 * std::abs(list[m].sound_speed2(rho, 0.01)));
+  }
+}
+
+TEST(Materials, LibraryIsCitedAndComplete) {
+  const auto names = mp::materials::material_names();
+  for (const char* required :
+       {"air", "helium", "water", "copper", "steel_4340", "aluminium_6061", "tungsten"}) {
+    EXPECT_NE(mp::materials::find_material(required), nullptr) << required;
+  }
+  EXPECT_EQ(mp::materials::find_material("unobtainium"), nullptr);
+  for (const auto& name : names) {
+    const auto* m = mp::materials::find_material(name);
+    ASSERT_NE(m, nullptr);
+    EXPECT_GT(m->rho0, 0.0) << name;
+    EXPECT_GT(m->citation.size(), 20u) << name;
+    EXPECT_NO_THROW(mp::materials::make_eos(*m)) << name;
+  }
+  // A gas at its reference density and the energy of 1 atm gives 1 atm back.
+  const auto* air = mp::materials::find_material("air");
+  const Eos a = mp::materials::make_eos(*air);
+  EXPECT_NEAR(a.pressure(air->rho0, kAtm / (0.4 * air->rho0)), kAtm, 1e-18);
+  // Ambient solids: p = 0 at rho0, e = 0, and c = c0 there.
+  const auto* w = mp::materials::find_material("tungsten");
+  const Eos tw = mp::materials::make_eos(*w);
+  EXPECT_NEAR(tw.sound_speed(w->rho0, 0.0), w->param("c0"), 1e-14);
+  EXPECT_THROW(w->param("nope"), mp::InputError);
+}
+
+}  // namespace
