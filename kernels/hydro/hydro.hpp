@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "eos/ideal_gas.hpp"
+#include "eos/eos.hpp"
 #include "io/hdf5_writer.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
@@ -66,7 +66,7 @@ struct Health {
 
 class Hydro {
  public:
-  Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::IdealGas eos);
+  Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos);
 
   State& state() { return s_; }
   const State& state() const { return s_; }
@@ -100,7 +100,7 @@ class Hydro {
   const Mesh& mesh_;
   Halo& halo_;
   Options opt_;
-  eos::IdealGas eos_;
+  eos::Eos eos_;
   State s_;
 };
 

@@ -7,7 +7,7 @@
 
 namespace mp::hydro {
 
-Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::IdealGas eos)
+Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
     : mesh_(mesh), halo_(halo), opt_(opt), eos_(eos) {
   const auto C = Centering::Cell, N = Centering::Node;
   s_.rho = mesh.new_field("density", C);
@@ -61,7 +61,7 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
                               const Field3& c) const {
   const auto eos = eos_;
   Kokkos::parallel_for(
-      "eos::ideal_gas", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+      "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
         p(i, j, k) = eos.pressure(rho(i, j, k), e(i, j, k));
         c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
       });

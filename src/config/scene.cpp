@@ -1,5 +1,7 @@
 #include "config/scene.hpp"
 
+#include "materials/library.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -51,18 +53,63 @@ void read_mesh(const DeckNode& root, Scene& s) {
   }
 }
 
+// EOS parameter names by kind (units: README, "Units"; kernels/materials/library.hpp).
+const std::map<std::string, std::vector<std::string>> kEosParams = {
+    {"ideal_gas", {"gamma"}},
+    {"stiffened_gas", {"gamma", "p_inf"}},
+    {"mie_gruneisen", {"c0", "s", "gamma0"}},
+    {"polynomial", {"A1", "A2", "A3", "B0", "B1"}},
+    {"jwl", {"A", "B", "R1", "R2", "omega", "E0", "D", "p_cj"}},
+};
+const std::vector<std::string> kEosKinds = {"ideal_gas", "stiffened_gas", "mie_gruneisen",
+                                            "polynomial", "jwl"};
+
 void read_materials(const DeckNode& root, Scene& s) {
   const DeckNode list = root.child("materials");
   if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of materials");
   for (const DeckNode& m : list.items()) {
-    m.expect_keys({"name", "eos", "gamma"});
+    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma"});
     MaterialSpec spec;
     spec.name = m.get_string("name");
     for (const auto& other : s.materials)
       if (other.name == spec.name)
         m.child("name").fail("material '" + spec.name + "' defined twice");
-    spec.eos = m.get_enum("eos", {"ideal_gas"});
-    spec.gamma = m.get_real("gamma", 1.0 + 1e-6, 10.0);
+    if (m.has("library")) {
+      const std::string lib = m.get_string("library");
+      const materials::MaterialData* data = materials::find_material(lib);
+      if (!data)
+        m.child("library").fail("no material '" + lib + "' in the library; did you mean '" +
+                                nearest(lib, materials::material_names()) + "'?");
+      if (m.has("eos")) m.child("eos").fail("a library material brings its own EOS; drop 'eos'");
+      spec.library = lib;
+      spec.eos = data->eos;
+      spec.rho0 = data->rho0;
+      spec.citation = data->citation;
+      for (const auto& [k, v] : data->params) spec.params[k] = v;
+    } else {
+      spec.eos = m.get_enum("eos", kEosKinds);
+    }
+    spec.rho0 = m.get_real("rho0", 1e-12, 1e6, spec.rho0);
+    if (spec.eos != "ideal_gas" && spec.eos != "stiffened_gas" && !(spec.rho0 > 0))
+      m.fail("a " + spec.eos + " material needs a reference density 'rho0'");
+    const std::vector<std::string>& names = kEosParams.at(spec.eos);
+    // `gamma` beside `eos` is shorthand for params.gamma (the gases)
+    if (m.has("gamma")) {
+      if (spec.eos != "ideal_gas" && spec.eos != "stiffened_gas")
+        m.child("gamma").fail("a " + spec.eos + " EOS has no 'gamma'; see 'params'");
+      spec.params["gamma"] = m.get_real("gamma", 1.0 + 1e-6, 100.0);
+    }
+    if (m.has("params")) {
+      const DeckNode p = m.child("params");
+      p.expect_keys(names);
+      for (const auto& k : names)
+        if (p.has(k)) spec.params[k] = p.get_real(k, -1e30, 1e30);
+    }
+    for (const auto& k : names)
+      if (!spec.params.count(k))
+        m.fail("the " + spec.eos + " EOS needs parameter '" + k + "' under 'params'");
+    if (spec.eos == "ideal_gas" && !(spec.params["gamma"] > 1))
+      m.child("params").child("gamma").fail("gamma must exceed 1");
     s.materials.push_back(spec);
   }
   if (s.materials.size() > 1)

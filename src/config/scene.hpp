@@ -1,6 +1,7 @@
 // A scene: everything one run needs, read strictly from a YAML deck (see README, "Scene decks").
 #pragma once
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -12,8 +13,11 @@ namespace mp {
 
 struct MaterialSpec {
   std::string name;
+  std::string library;  // library entry it starts from ("" for a custom material)
   std::string eos = "ideal_gas";
-  double gamma = 1.4;
+  double rho0 = 0;                       // reference density (0: none given)
+  std::map<std::string, double> params;  // EOS parameters, library values overridden
+  std::string citation;
 };
 
 struct ShapeSpec {

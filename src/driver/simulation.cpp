@@ -14,6 +14,7 @@
 #include "io/hdf5_writer.hpp"
 #include "io/log.hpp"
 #include "materials/geometry.hpp"
+#include "materials/library.hpp"
 
 namespace mp {
 
@@ -49,6 +50,25 @@ void make_dirs(const std::string& dir) {
   }
 }
 
+eos::Eos material_eos(const MaterialSpec& m) {
+  materials::MaterialData d;
+  d.name = m.name;
+  d.eos = m.eos;
+  d.rho0 = Real(m.rho0);
+  for (const auto& [k, v] : m.params) d.params[k] = Real(v);
+  return materials::make_eos(d);
+}
+
+// Specific internal energy giving pressure p at density rho: every EOS here is affine in e at
+// fixed density, p = p(rho, 0) + (p(rho, 1) - p(rho, 0)) e.
+double energy_for_pressure(const eos::Eos& eos, double rho, double p) {
+  const double p0 = double(eos.pressure(Real(rho), Real(0)));
+  const double slope = double(eos.pressure(Real(rho), Real(1))) - p0;
+  if (!(slope > 0))
+    throw InputError("the EOS cannot set a pressure at density " + std::to_string(rho));
+  return (p - p0) / slope;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
@@ -64,8 +84,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.dt_max = Real(scene_.time.dt_max);
   opt.ke_fix = scene_.numerics.ke_fix;
   opt.unsplit = scene_.numerics.remap == "unsplit";
-  eos::IdealGas gas{Real(scene_.materials[0].gamma)};
-  hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, gas);
+  hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, material_eos(scene_.materials[0]));
 }
 
 Simulation::~Simulation() = default;
@@ -76,15 +95,22 @@ std::vector<std::string> Simulation::modules() const {
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
               " advection, " + scene_.numerics.remap + " remap");
-  m.push_back("eos: ideal gas (" + scene_.materials[0].name +
-              ", gamma=" + std::to_string(scene_.materials[0].gamma) + ")");
+  const MaterialSpec& mat = scene_.materials[0];
+  std::string eos = "eos: " + mat.eos + " (" + mat.name;
+  if (!mat.library.empty()) eos += ", library '" + mat.library + "'";
+  for (const auto& [k, v] : mat.params) {
+    std::ostringstream os;
+    os << ", " << k << "=" << v;
+    eos += os.str();
+  }
+  m.push_back(eos + ")");
   m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
   return m;
 }
 
 void Simulation::initialize() {
   std::vector<RegionDev> regs;
-  const eos::IdealGas gas{Real(scene_.materials[0].gamma)};
+  const eos::Eos eos = material_eos(scene_.materials[0]);
   for (const auto& r : scene_.regions) {
     RegionDev d{};
     d.shape = r.shape.shape;
@@ -94,7 +120,7 @@ void Simulation::initialize() {
       d.vcenter[a] = r.velocity_center[a];
     }
     d.rho = r.density;
-    d.e = r.has_pressure ? double(gas.energy(Real(r.density), Real(r.pressure))) : r.energy;
+    d.e = r.has_pressure ? energy_for_pressure(eos, r.density, r.pressure) : r.energy;
     d.radial = r.radial_velocity ? 1 : 0;
     d.wave_amp = r.wave_amplitude;
     d.wave_axis = r.wave_axis;
