@@ -63,18 +63,45 @@ int main(int argc, char** argv) {
         Simulation sim(scene, MPI_COMM_WORLD, settings);
         sim.initialize();
         auto& h = sim.hydro();
+        auto& state = h.state();
         Real dt_old = 0;
         double t = 0, wall = 0;
+        // Per-phase wall time, each phase fenced: the cycle of Hydro::step taken apart.
+        const char* phase_names[5] = {"time_step", "lagrange", "remap", "eos_viscosity",
+                                      "health_check"};
+        double phase[5] = {0, 0, 0, 0, 0};
+        auto now = [] { return std::chrono::steady_clock::now(); };
+        auto since = [](std::chrono::steady_clock::time_point a) {
+          return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
+        };
         for (int cyc = 0; cyc < warmup + cycles; ++cyc) {
           Kokkos::fence();
           MPI_Barrier(MPI_COMM_WORLD);
-          const auto t0 = std::chrono::steady_clock::now();
+          const bool timed = cyc >= warmup;
+          const auto t0 = now();
+          auto tp = now();
           const auto ts = h.time_step(dt_old, Real(t), Real(1e9));
-          h.step(ts.dt, cyc);
           Kokkos::fence();
+          if (timed) phase[0] += since(tp);
+          tp = now();
+          h.lagrange(ts.dt);
+          Kokkos::fence();
+          if (timed) phase[1] += since(tp);
+          tp = now();
+          h.remap(cyc);
+          Kokkos::fence();
+          if (timed) phase[2] += since(tp);
+          tp = now();
+          h.equation_of_state(state.rho, state.e, state.p, state.c);
+          h.viscosity();
+          Kokkos::fence();
+          if (timed) phase[3] += since(tp);
+          tp = now();
+          h.check();
+          Kokkos::fence();
+          if (timed) phase[4] += since(tp);
           MPI_Barrier(MPI_COMM_WORLD);
-          if (cyc >= warmup)
-            wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          if (timed) wall += since(t0);
           t += ts.dt;
           dt_old = ts.dt;
         }
@@ -85,18 +112,24 @@ int main(int argc, char** argv) {
         // traffic so the distance from STREAM is visible.
         const double bytes_per_cell = 20.0 * sizeof(Real) * 8;
         rows << "| " << s << "^3 | " << cycles << " | " << wall / cycles * 1e3 << " | "
-             << rate / 1e6 << " | " << rate * bytes_per_cell / 1e9 << " |\n";
+             << rate / 1e6 << " | " << rate * bytes_per_cell / 1e9 << " |";
+        for (int ph = 0; ph < 5; ++ph) rows << " " << 100 * phase[ph] / wall << " |";
+        rows << "\n";
         js << (n ? "," : "") << "\n    {\"cells_per_axis\": " << s << ", \"cells\": " << cells
            << ", \"cycles\": " << cycles << ", \"seconds_per_cycle\": " << wall / cycles
-           << ", \"cell_cycles_per_second\": " << rate << "}";
+           << ", \"cell_cycles_per_second\": " << rate << ", \"phase_seconds_per_cycle\": {";
+        for (int ph = 0; ph < 5; ++ph)
+          js << (ph ? ", " : "") << "\"" << phase_names[ph] << "\": " << phase[ph] / cycles;
+        js << "}}";
       }
       js << "\n  ]\n}\n";
       if (rank == 0) {
         std::printf("STREAM triad (same process): %.2f GB/s; %s, %d threads/rank, %d ranks\n\n",
                     st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks);
         std::printf(
-            "| size | cycles | ms/cycle | Mcell-cycles/s | GB/s at 1280 B/cell |\n"
-            "|---|---|---|---|---|\n%s",
+            "| size | cycles | ms/cycle | Mcell-cycles/s | GB/s at 1280 B/cell | %% time step "
+            "| %% lagrange | %% remap | %% eos+q | %% check |\n"
+            "|---|---|---|---|---|---|---|---|---|---|\n%s",
             rows.str().c_str());
         if (!json.empty()) {
           std::ofstream out(json);
