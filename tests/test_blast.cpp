@@ -62,9 +62,7 @@ double permutation_asymmetry(const std::vector<double>& rho, int n, double* peak
 }  // namespace
 
 TEST(Sedov, ShockRadiusAndSymmetry) {
-  const char* ov = std::getenv("SEDOV_OV");
-  auto r = test::run_scene(test::load_scene(
-      "sedov.yaml", ov ? std::vector<std::string>{ov} : std::vector<std::string>{}));
+  auto r = test::run_scene(test::load_scene("sedov.yaml"));
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
@@ -110,9 +108,7 @@ TEST(Sedov, UnsplitRemapIsSymmetricToRoundOff) {
 }
 
 TEST(Noh, PostShockPlateau) {
-  const char* ov = std::getenv("NOH_OV");
-  auto r = test::run_scene(
-      test::load_scene("noh.yaml", ov ? std::vector<std::string>{ov} : std::vector<std::string>{}));
+  auto r = test::run_scene(test::load_scene("noh.yaml"));
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
