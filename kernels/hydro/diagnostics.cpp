@@ -102,6 +102,16 @@ Health Hydro::check() const {
       Kokkos::Min<long>(first));
   long global_first = LONG_MAX;
   MPI_Allreduce(&first, &global_first, 1, MPI_LONG, MPI_MIN, mesh_.comm());
+  bool material_bad = false;
+  if (mm_) {
+    // a material inside a mixed cell can go bad while the cell average still looks fine
+    double vals[3];
+    const long mfirst = mm_->first_bad(vals);
+    if (mfirst < global_first) {
+      global_first = mfirst;
+      material_bad = true;
+    }
+  }
   Health h;
   if (global_first == LONG_MAX) return h;
   h.ok = false;
@@ -131,9 +141,11 @@ Health Hydro::check() const {
   h.e = all[1];
   h.p = all[2];
   h.volume = g.cell_volume();
-  h.what = !(h.rho > 0)  ? "density not positive"
-           : !(h.e >= 0) ? "negative internal energy"
-                         : "NaN or infinite value";
+  h.what = material_bad   ? "a material of a mixed cell has non-positive density or negative "
+                            "or non-finite energy"
+           : !(h.rho > 0) ? "density not positive"
+           : !(h.e >= 0)  ? "negative internal energy"
+                          : "NaN or infinite value";
   (void)mpi_real;
   return h;
 }
@@ -193,6 +205,7 @@ Totals Hydro::totals() const {
   t.internal = global[1];
   t.momentum = {global[2], global[3], global[4]};
   t.kinetic = global[5];
+  if (mm_) t.material_mass = mm_->material_masses();
   return t;
 }
 

@@ -3,11 +3,13 @@
 // here; per-material state plugs in beside them (the multi-material layouts).
 #pragma once
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "eos/eos.hpp"
 #include "io/hdf5_writer.hpp"
+#include "materials/layout.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 
@@ -27,6 +29,13 @@ struct Options {
   // One remap step over all axes instead of three split sweeps (symmetric under permutations
   // of the axes; the time step then keeps the sum of the axes' Courant numbers below cfl).
   bool unsplit = false;
+  // Multi-material scenes (two or more EOS): storage of the per-material state, interface
+  // reconstruction of the material fluxes (0 Youngs PLIC, 1 SLIC, 2 none: fraction-weighted),
+  // and the volume fraction below which a material leaves a cell (its mass and energy go to
+  // the largest material of the cell).
+  mat::LayoutKind layout = mat::LayoutKind::Compact;
+  int interface = 0;
+  Real min_fraction = Real(1e-10);
 };
 
 struct State {
@@ -53,6 +62,7 @@ struct TimeStep {
 struct Totals {
   double mass = 0, internal = 0, kinetic = 0;
   std::array<double, 3> momentum{};
+  std::vector<double> material_mass;  // per material (multi-material scenes)
   double total() const { return internal + kinetic; }
 };
 
@@ -67,10 +77,15 @@ struct Health {
 class Hydro {
  public:
   Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos);
+  // One EOS per material; two or more switch the multi-material path on.
+  Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector<eos::Eos>& eos);
 
   State& state() { return s_; }
   const State& state() const { return s_; }
   const Options& options() const { return opt_; }
+  // The per-material state of a multi-material scene, or nullptr.
+  mat::MaterialState* materials() { return mm_.get(); }
+  const mat::MaterialState* materials() const { return mm_.get(); }
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
@@ -96,11 +111,24 @@ class Hydro {
   void exchange_cells();
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
+  // Multi-material pieces (multimat.cpp).
+  void mm_equation_of_state();
+  void mm_predictor(Real vol);
+  void mm_corrector(Real vol);
+  template <class Dev>
+  void mm_face_fluxes(const Dev& dev, int d);
+  template <class Dev>
+  void mm_cell_update(const Dev& dev, int d);
+  void mm_remap_faces(int d);
+  void mm_remap_cells(int d);
+  void mm_ke_fix();
 
   const Mesh& mesh_;
   Halo& halo_;
   Options opt_;
   eos::Eos eos_;
+  mat::MaterialSet mats_;
+  std::unique_ptr<mat::MaterialState> mm_;
   State s_;
 };
 

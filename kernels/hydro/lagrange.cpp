@@ -1,6 +1,7 @@
 // The Lagrangian phase: EOS, artificial viscosity, and the predictor–corrector step on the
 // staggered mesh. The volume change of a cell and the force on a node use the same face areas,
 // so the work done on the nodes equals the p dV work taken from the cells.
+#include "core/error.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
@@ -8,7 +9,10 @@
 namespace mp::hydro {
 
 Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
-    : mesh_(mesh), halo_(halo), opt_(opt), eos_(eos) {
+    : Hydro(mesh, halo, opt, std::vector<eos::Eos>{eos}) {}
+
+Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector<eos::Eos>& eos)
+    : mesh_(mesh), halo_(halo), opt_(opt), eos_(eos.at(0)) {
   const auto C = Centering::Cell, N = Centering::Node;
   s_.rho = mesh.new_field("density", C);
   s_.e = mesh.new_field("energy", C);
@@ -38,9 +42,19 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
       s_.energy_flux[d] = s_.energy_flux[0];
     }
   }
+  if (eos.size() > 1) {
+    mats_.n = static_cast<int>(eos.size());
+    if (mats_.n > mat::kMaxMaterials)
+      throw RunError("at most " + std::to_string(mat::kMaxMaterials) + " materials per scene");
+    for (int m = 0; m < mats_.n; ++m) mats_.eos[m] = eos[m];
+    mm_ = std::make_unique<mat::MaterialState>(mesh, opt.layout, mats_.n, s_.rho, s_.e, s_.p,
+                                               s_.p_half);
+  }
 }
 
 void Hydro::exchange_cells() {
+  // the material exchange also writes the ghosts' cell averages
+  if (mm_) return mm_->exchange();
   halo_.exchange({{s_.rho, Centering::Cell, {1, 1, 1}}, {s_.e, Centering::Cell, {1, 1, 1}}});
 }
 
@@ -59,6 +73,7 @@ void Hydro::prepare() {
 
 void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& p,
                               const Field3& c) const {
+  if (mm_) return const_cast<Hydro*>(this)->mm_equation_of_state();
   const auto eos = eos_;
   Kokkos::parallel_for(
       "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -133,15 +148,17 @@ Health Hydro::lagrange(Real dt) {
 
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
   volume_fluxes(s_.u, s_.v, s_.w, Real(0.5) * dt);
-  Kokkos::parallel_for(
-      "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                        fz(i, j, k + 1) - fz(i, j, k);
-        const Real mass = rho(i, j, k) * vol;
-        const Real v_half = vol + dv;
-        const Real e_half = e(i, j, k) - (p(i, j, k) + q(i, j, k)) * dv / mass;
-        ph(i, j, k) = eos.pressure(mass / v_half, e_half);
-      });
+  if (mm_) mm_predictor(vol);
+  if (!mm_)
+    Kokkos::parallel_for(
+        "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                          fz(i, j, k + 1) - fz(i, j, k);
+          const Real mass = rho(i, j, k) * vol;
+          const Real v_half = vol + dv;
+          const Real e_half = e(i, j, k) - (p(i, j, k) + q(i, j, k)) * dv / mass;
+          ph(i, j, k) = eos.pressure(mass / v_half, e_half);
+        });
 
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
   auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
@@ -179,14 +196,16 @@ Health Hydro::lagrange(Real dt) {
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
   volume_fluxes(ub, vb, wb, dt);
-  Kokkos::parallel_for(
-      "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                        fz(i, j, k + 1) - fz(i, j, k);
-        const Real mass = rho(i, j, k) * vol;
-        e(i, j, k) -= (ph(i, j, k) + q(i, j, k)) * dv / mass;
-        rho(i, j, k) = mass / (vol + dv);
-      });
+  if (mm_) mm_corrector(vol);
+  if (!mm_)
+    Kokkos::parallel_for(
+        "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                          fz(i, j, k + 1) - fz(i, j, k);
+          const Real mass = rho(i, j, k) * vol;
+          e(i, j, k) -= (ph(i, j, k) + q(i, j, k)) * dv / mass;
+          rho(i, j, k) = mass / (vol + dv);
+        });
 
   // The Lagrangian volumes must stay positive.
   const Real vmin = vol;

@@ -75,24 +75,27 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
     lo[d] = fr[0];
     hi[d] = fr[1];
-    Kokkos::parallel_for(
-        "remap::cell_flux", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-        KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real f = vf(i, j, k);
-          // face i lies between cells i-1 and i; the donor is the cell the flow leaves
-          const int dn = f > 0 ? -1 : 0;  // donor offset from the face index
-          const int st = f > 0 ? 1 : -1;  // wind direction in index steps
-          const int di = i + dn * sx, dj = j + dn * sy, dk = k + dn * sz;
-          const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
-          const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
-          const Real sigma = mabs(f) / pre(di, dj, dk);
-          const Real rf = face_value(rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), sigma, ord);
-          const Real m = f * rf;
-          const Real sm = mabs(m) / (rho(di, dj, dk) * pre(di, dj, dk));
-          const Real efv = face_value(e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), sm, ord);
-          mf(i, j, k) = m;
-          ef(i, j, k) = m * efv;
-        });
+    if (mm_) mm_remap_faces(d);
+    if (!mm_)
+      Kokkos::parallel_for(
+          "remap::cell_flux", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+          KOKKOS_LAMBDA(int i, int j, int k) {
+            const Real f = vf(i, j, k);
+            // face i lies between cells i-1 and i; the donor is the cell the flow leaves
+            const int dn = f > 0 ? -1 : 0;  // donor offset from the face index
+            const int st = f > 0 ? 1 : -1;  // wind direction in index steps
+            const int di = i + dn * sx, dj = j + dn * sy, dk = k + dn * sz;
+            const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
+            const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
+            const Real sigma = mabs(f) / pre(di, dj, dk);
+            const Real rf =
+                face_value(rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), sigma, ord);
+            const Real m = f * rf;
+            const Real sm = mabs(m) / (rho(di, dj, dk) * pre(di, dj, dk));
+            const Real efv = face_value(e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), sm, ord);
+            mf(i, j, k) = m;
+            ef(i, j, k) = m * efv;
+          });
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
     HaloField efh{ef, Centering::Cell, {1, 1, 1}};
     mfh.face_axis = efh.face_axis = d;
@@ -101,26 +104,32 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   }
 
   // Cells: new mass and energy; one ghost layer is updated too, for the dual-mesh masses.
-  Kokkos::parallel_for(
-      "remap::cell_update", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real m0 = rho(i, j, k) * pre(i, j, k);
-        Real dm = 0, de = 0;
-        if (ax > 0) {
-          dm += mfx(i, j, k) - mfx(i + 1, j, k);
-          de += efx(i, j, k) - efx(i + 1, j, k);
-        }
-        if (ay > 0) {
-          dm += mfy(i, j, k) - mfy(i, j + 1, k);
-          de += efy(i, j, k) - efy(i, j + 1, k);
-        }
-        if (az > 0) {
-          dm += mfz(i, j, k) - mfz(i, j, k + 1);
-          de += efz(i, j, k) - efz(i, j, k + 1);
-        }
-        const Real m1 = m0 + dm;
-        e(i, j, k) = (e(i, j, k) * m0 + de) / m1;
-        rho(i, j, k) = m1 / post(i, j, k);
-      });
+  // (Multi-material: owned cells, then the material exchange; the scene reader keeps
+  // multi-material runs on split sweeps, one axis per step.)
+  if (mm_)
+    for (int d = 0; d < 3; ++d)
+      if (axes[d]) mm_remap_cells(d);
+  if (!mm_)
+    Kokkos::parallel_for(
+        "remap::cell_update", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real m0 = rho(i, j, k) * pre(i, j, k);
+          Real dm = 0, de = 0;
+          if (ax > 0) {
+            dm += mfx(i, j, k) - mfx(i + 1, j, k);
+            de += efx(i, j, k) - efx(i + 1, j, k);
+          }
+          if (ay > 0) {
+            dm += mfy(i, j, k) - mfy(i, j + 1, k);
+            de += efy(i, j, k) - efy(i, j + 1, k);
+          }
+          if (az > 0) {
+            dm += mfz(i, j, k) - mfz(i, j, k + 1);
+            de += efz(i, j, k) - efz(i, j, k + 1);
+          }
+          const Real m1 = m0 + dm;
+          e(i, j, k) = (e(i, j, k) * m0 + de) / m1;
+          rho(i, j, k) = m1 / post(i, j, k);
+        });
 
   // Momentum through the dual faces normal to each axis d. The dual face at cell c (between
   // nodes c and c+1) carries the average of the mass fluxes through the two cell faces bounding
@@ -182,7 +191,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
         const Real ke1 = Real(0.5) * m1 * (u1 * u1 + v1 * v1 + w1 * w1);
         kel(i, j, k) = ke0 + ke_flux - ke1;
       });
-  if (opt_.ke_fix) {
+  if (opt_.ke_fix && mm_) mm_ke_fix();
+  if (opt_.ke_fix && !mm_) {
     // Each node hands 1/8 of its loss to each of its 8 cells; owned cells read owned nodes only.
     Kokkos::parallel_for(
         "remap::ke_fix", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {

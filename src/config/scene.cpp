@@ -112,8 +112,8 @@ void read_materials(const DeckNode& root, Scene& s) {
       m.child("params").child("gamma").fail("gamma must exceed 1");
     s.materials.push_back(spec);
   }
-  if (s.materials.size() > 1)
-    list.fail("this build runs one material per scene (multi-material mixing is not built yet)");
+  if (s.materials.size() > 16)
+    list.fail("a scene holds at most 16 materials, not " + std::to_string(s.materials.size()));
 }
 
 const std::vector<std::string> kShapeKinds = {"all", "box", "sphere", "cylinder", "cone", "shell"};
@@ -312,7 +312,12 @@ Scene read_scene(const Deck& deck) {
 
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
-    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples"});
+    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples", "layout", "interface",
+                   "min_fraction"});
+    s.numerics.layout = n.get_enum("layout", {"compact", "dense"}, s.numerics.layout);
+    s.numerics.interface =
+        n.get_enum("interface", {"youngs", "slic", "none"}, s.numerics.interface);
+    s.numerics.min_fraction = n.get_real("min_fraction", 0, 1e-3, s.numerics.min_fraction);
     s.numerics.samples = static_cast<int>(n.get_int("samples", 1, 16, s.numerics.samples));
     s.numerics.remap = n.get_enum("remap", {"split", "unsplit"}, s.numerics.remap);
     s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
@@ -327,6 +332,11 @@ Scene read_scene(const Deck& deck) {
 
   read_materials(root, s);
   read_regions(root, s);
+  if (s.materials.size() > 1 && s.numerics.remap == "unsplit")
+    root.child("numerics")
+        .child("remap")
+        .fail("the unsplit remap runs single-material scenes only; use 'split' with " +
+              std::to_string(s.materials.size()) + " materials");
 
   s.output.basename = s.name;
   if (root.has("output")) {

@@ -61,6 +61,9 @@ struct NumericsSpec {
   double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
   bool ke_fix = true;                // return the kinetic energy the momentum remap dissipates
   int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
+  std::string layout = "compact";    // per-material storage: compact | dense
+  std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
+  double min_fraction = 1e-10;       // a material below this volume fraction leaves a cell
 };
 
 struct OutputSpec {

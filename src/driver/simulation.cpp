@@ -28,6 +28,7 @@ struct RegionDev {
   int radial;
   double wave_amp, wave_lo, wave_len;
   int wave_axis;
+  int mat;
 
   KOKKOS_INLINE_FUNCTION bool contains(double x, double y, double z) const {
     return shape.contains(x, y, z);
@@ -35,6 +36,78 @@ struct RegionDev {
   // Volume fraction of the cell with low corner lo and sizes h.
   KOKKOS_INLINE_FUNCTION double fraction(const double lo[3], const double h[3], int samples) const {
     return all ? 1.0 : geom::sampled_fraction(shape, lo, h, samples);
+  }
+  // Density and specific energy of the region in a cell: uniform, or a smooth entropy wave
+  // (density times 1 + amplitude * sin(2 pi (x - lo) / L), averaged exactly over the cell, at
+  // uniform pressure).
+  KOKKOS_INLINE_FUNCTION void state(const double lo[3], const double h[3], double& r,
+                                    double& en) const {
+    double wf = 1;
+    if (wave_amp > 0) {
+      const int a = wave_axis;
+      const double kw = 2 * M_PI / wave_len;
+      const double x0 = lo[a] - wave_lo, x1 = x0 + h[a];
+      wf = 1 +
+           wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) / (kw * h[a]);
+    }
+    r = rho * wf;
+    en = wave_amp > 0 ? e / wf : e;
+  }
+};
+
+// Initial material content of the owned cells: regions paint in order, a later region taking
+// the volume fraction of the cell it covers from every material already there.
+struct PaintSource {
+  Kokkos::View<RegionDev*, MemSpace> regs;
+  int nreg, nmat, samples;
+  Geometry g;
+  double min_fraction;
+  int lo[3], hi[3];
+
+  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const {
+    return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
+  }
+  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
+    const double clo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+    const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+    double vol[mat::kMaxMaterials], mass[mat::kMaxMaterials], ener[mat::kMaxMaterials];
+    for (int m = 0; m < nmat; ++m) vol[m] = mass[m] = ener[m] = 0;
+    for (int n = 0; n < nreg; ++n) {
+      const RegionDev& reg = regs(n);
+      const double f = reg.fraction(clo, h, samples);
+      if (f <= 0) continue;
+      for (int m = 0; m < nmat; ++m) {
+        vol[m] *= 1 - f;
+        mass[m] *= 1 - f;
+        ener[m] *= 1 - f;
+      }
+      double rr, ee;
+      reg.state(clo, h, rr, ee);
+      vol[reg.mat] += f;
+      mass[reg.mat] += f * rr;
+      ener[reg.mat] += f * rr * ee;
+    }
+    int big = 0;
+    for (int m = 1; m < nmat; ++m)
+      if (vol[m] > vol[big]) big = m;
+    double vsum = 0;
+    for (int m = 0; m < nmat; ++m) {
+      if (m != big && !(vol[m] > min_fraction)) {
+        mass[big] += mass[m];
+        ener[big] += ener[m];
+        vol[m] = 0;
+      }
+      vsum += vol[m];
+    }
+    int n = 0;
+    for (int m = 0; m < nmat; ++m) {
+      if (!(vol[m] > 0)) continue;
+      a[m] = Real(vol[m] / vsum);
+      r[m] = Real(mass[m] / vol[m] * vsum);
+      en[m] = Real(ener[m] / mass[m]);
+      ++n;
+    }
+    return n;
   }
 };
 
@@ -84,7 +157,15 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.dt_max = Real(scene_.time.dt_max);
   opt.ke_fix = scene_.numerics.ke_fix;
   opt.unsplit = scene_.numerics.remap == "unsplit";
-  hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, material_eos(scene_.materials[0]));
+  opt.layout =
+      scene_.numerics.layout == "dense" ? mat::LayoutKind::Dense : mat::LayoutKind::Compact;
+  opt.interface = scene_.numerics.interface == "youngs" ? 0
+                  : scene_.numerics.interface == "slic" ? 1
+                                                        : 2;
+  opt.min_fraction = Real(scene_.numerics.min_fraction);
+  std::vector<eos::Eos> eos;
+  for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
+  hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, eos);
 }
 
 Simulation::~Simulation() = default;
@@ -95,22 +176,34 @@ std::vector<std::string> Simulation::modules() const {
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
               " advection, " + scene_.numerics.remap + " remap");
-  const MaterialSpec& mat = scene_.materials[0];
-  std::string eos = "eos: " + mat.eos + " (" + mat.name;
-  if (!mat.library.empty()) eos += ", library '" + mat.library + "'";
-  for (const auto& [k, v] : mat.params) {
-    std::ostringstream os;
-    os << ", " << k << "=" << v;
-    eos += os.str();
+  for (const MaterialSpec& mat : scene_.materials) {
+    std::string eos = "eos: " + mat.eos + " (" + mat.name;
+    if (!mat.library.empty()) eos += ", library '" + mat.library + "'";
+    for (const auto& [k, v] : mat.params) {
+      std::ostringstream os;
+      os << ", " << k << "=" << v;
+      eos += os.str();
+    }
+    m.push_back(eos + ")");
   }
-  m.push_back(eos + ")");
-  m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
+  if (scene_.materials.size() == 1) {
+    m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
+  } else {
+    std::ostringstream os;
+    os << "materials: " << scene_.materials.size() << " materials, " << scene_.numerics.layout
+       << " layout, equal-strain mixed cells, interface reconstruction "
+       << (scene_.numerics.interface == "youngs" ? "Youngs PLIC (onion skin)"
+                                                 : scene_.numerics.interface)
+       << ", min fraction " << scene_.numerics.min_fraction;
+    m.push_back(os.str());
+  }
   return m;
 }
 
 void Simulation::initialize() {
   std::vector<RegionDev> regs;
-  const eos::Eos eos = material_eos(scene_.materials[0]);
+  std::vector<eos::Eos> eos;
+  for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
   for (const auto& r : scene_.regions) {
     RegionDev d{};
     d.shape = r.shape.shape;
@@ -120,12 +213,14 @@ void Simulation::initialize() {
       d.vcenter[a] = r.velocity_center[a];
     }
     d.rho = r.density;
-    d.e = r.has_pressure ? energy_for_pressure(eos, r.density, r.pressure) : r.energy;
+    d.e = r.has_pressure ? energy_for_pressure(eos[r.material_index], r.density, r.pressure)
+                         : r.energy;
     d.radial = r.radial_velocity ? 1 : 0;
     d.wave_amp = r.wave_amplitude;
     d.wave_axis = r.wave_axis;
     d.wave_lo = scene_.mesh.lo[r.wave_axis];
     d.wave_len = scene_.mesh.hi[r.wave_axis] - scene_.mesh.lo[r.wave_axis];
+    d.mat = r.material_index;
     regs.push_back(d);
   }
   Kokkos::View<RegionDev*, MemSpace> dregs("regions", regs.size());
@@ -140,34 +235,40 @@ void Simulation::initialize() {
   // Regions paint in order; a later region takes the volume fraction of the cell it covers
   // (sub-cell sampled), mixing mass and internal energy with what was there.
   const int samples = scene_.numerics.samples;
-  Kokkos::parallel_for(
-      "init::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
-        const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
-        double rho_c = 0, e_c = 0;
-        for (int n = 0; n < nreg; ++n) {
-          const RegionDev& r = dregs(n);
-          const double f = r.fraction(lo, h, samples);
-          if (f <= 0) continue;
-          double wf = 1;
-          if (r.wave_amp > 0) {
-            // exact cell average of sin(2 pi (x - lo) / L) over the cell
-            const int a = r.wave_axis;
-            const double kw = 2 * M_PI / r.wave_len;
-            const double x0 = lo[a] - r.wave_lo, x1 = x0 + h[a];
-            wf = 1 + r.wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) /
-                         (kw * h[a]);
+  mat::MaterialState* mm = hydro_->materials();
+  if (mm) {
+    const int ng = Mesh::ng;
+    PaintSource src{
+        dregs,
+        nreg,
+        mm->nmat(),
+        samples,
+        g,
+        scene_.numerics.min_fraction,
+        {ng, ng, ng},
+        {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)}};
+    mm->assign("init::materials", src);
+  }
+  if (!mm)
+    Kokkos::parallel_for(
+        "init::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+          const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+          double rho_c = 0, e_c = 0;
+          for (int n = 0; n < nreg; ++n) {
+            const RegionDev& r = dregs(n);
+            const double f = r.fraction(lo, h, samples);
+            if (f <= 0) continue;
+            double rho_r, e_r;
+            r.state(lo, h, rho_r, e_r);
+            const double m_old = (1 - f) * rho_c;
+            const double m_new = f * rho_r;
+            e_c = (m_old * e_c + m_new * e_r) / (m_old + m_new);
+            rho_c = m_old + m_new;
           }
-          // the wave is an entropy wave: pressure stays uniform
-          const double rho_r = r.rho * wf, e_r = r.wave_amp > 0 ? r.e / wf : r.e;
-          const double m_old = (1 - f) * rho_c;
-          const double m_new = f * rho_r;
-          e_c = (m_old * e_c + m_new * e_r) / (m_old + m_new);
-          rho_c = m_old + m_new;
-        }
-        rho(i, j, k) = Real(rho_c);
-        e(i, j, k) = Real(e_c);
-      });
+          rho(i, j, k) = Real(rho_c);
+          e(i, j, k) = Real(e_c);
+        });
   Kokkos::parallel_for(
       "init::nodes", mesh_->nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
         const double x = g.node_coord(0, i), y = g.node_coord(1, j), z = g.node_coord(2, k);
@@ -210,6 +311,25 @@ void Simulation::initialize() {
                        " deposits energy but covers no cell; enlarge it");
     const double per_volume_fraction = deposit / total;
     const double vol = g.cell_volume();
+    if (mm) {
+      const int ng = Mesh::ng;
+      mm->for_cells(
+          "init::deposit", {ng, ng, ng},
+          {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)},
+          KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+            const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+            const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+            const double f = r.fraction(lo, h, samples);
+            if (!(f > 0)) return;
+            const Real de = Real(per_volume_fraction * f / (double(rho(i, j, k)) * vol));
+            for (int q = 0; q < cell.count(); ++q) {
+              const mat::MatRef mr = cell.get(q);
+              if (mr.alpha > 0) *mr.e += de;
+            }
+            if (!cell.aliases()) e(i, j, k) += de;
+          });
+      continue;
+    }
     Kokkos::parallel_for(
         "init::deposit", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
           const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
@@ -223,7 +343,11 @@ void Simulation::initialize() {
 
 std::string Simulation::write_dump(double t, long cycle) {
   if (!writer_) return "";
-  return writer_->write(hydro_->output_fields(), t, static_cast<int>(cycle));
+  auto fields = hydro_->output_fields();
+  if (const mat::MaterialState* mm = hydro_->materials())
+    for (int m = 0; m < mm->nmat(); ++m)
+      fields.push_back({"fraction_" + scene_.materials[m].name, Centering::Cell, mm->fraction(m)});
+  return writer_->write(fields, t, static_cast<int>(cycle));
 }
 
 RunResult Simulation::run() {
@@ -289,7 +413,15 @@ void Simulation::write_summary(const RunResult& r) const {
     o.precision(17);
     o << "{\"mass\": " << t.mass << ", \"momentum\": [" << t.momentum[0] << ", " << t.momentum[1]
       << ", " << t.momentum[2] << "], \"internal_energy\": " << t.internal
-      << ", \"kinetic_energy\": " << t.kinetic << ", \"total_energy\": " << t.total() << "}";
+      << ", \"kinetic_energy\": " << t.kinetic << ", \"total_energy\": " << t.total();
+    if (!t.material_mass.empty()) {
+      o << ", \"material_mass\": {";
+      for (std::size_t m = 0; m < t.material_mass.size(); ++m)
+        o << (m ? ", " : "") << "\"" << json_escape(scene_.materials[m].name)
+          << "\": " << t.material_mass[m];
+      o << "}";
+    }
+    o << "}";
     return o.str();
   };
   js << "{\n  \"scene\": \"" << scene_.name << "\",\n  \"deck\": \"" << json_escape(scene_.file)

@@ -1,0 +1,434 @@
+// The multi-material pieces of the cycle (DESIGN.md §4 items 2, 4, 7): per-material EOS and
+// mixture closure, the equal-strain Lagrangian update of mixed cells, and the remap of the
+// material volumes, masses and energies by Youngs' PLIC with onion skin ordering. Every kernel
+// here runs on both layouts through MaterialState's accessors and the same point functions.
+//
+// Mixture rules (documented in docs/numerics.md):
+//  - equal strain: every material of a cell takes the cell's relative volume change, so
+//    rho_m' = rho_m V / V' and e_m' = e_m - (p_m + q) dV / (rho_m V);
+//  - cell pressure p = sum alpha_m p_m (volume-fraction weighted, as in PAGOSA);
+//  - cell sound speed from rho c^2 = sum alpha_m rho_m c_m^2, the stiffness of the equal-strain
+//    mixture (dp/d(ln rho) at fixed strain sharing); a pure cell keeps its material's c.
+#include "core/math.hpp"
+#include "hydro/hydro.hpp"
+#include "hydro/point.hpp"
+#include "remap/plic.hpp"
+
+namespace mp::hydro {
+
+using mat::kMaxMaterials;
+using mat::MatRef;
+
+namespace {
+
+std::array<int, 3> all_lo() {
+  return {0, 0, 0};
+}
+
+// Adds sign x the per-material fluxes through face (fi, fj, fk), whose donor is (di, dj, dk)
+// and leaves the donor through its low (side 0) or high (side 1) face.
+KOKKOS_INLINE_FUNCTION void add_face(const mat::DenseDev& d, const Field3&, const Field3&,
+                                     const Field3&, int fi, int fj, int fk, int, int, int, int,
+                                     Real sign, Real* V, Real* M, Real* E) {
+  for (int m = 0; m < d.nmat; ++m) {
+    V[m] += sign * d.fv(m, fi, fj, fk);
+    M[m] += sign * d.fm(m, fi, fj, fk);
+    E[m] += sign * d.fe(m, fi, fj, fk);
+  }
+}
+
+KOKKOS_INLINE_FUNCTION void add_face(const mat::CompactDev& d, const Field3& vf, const Field3& mf,
+                                     const Field3& ef, int fi, int fj, int fk, int di, int dj,
+                                     int dk, int side, Real sign, Real* V, Real* M, Real* E) {
+  const int id = d.mat(di, dj, dk);
+  if (id >= 0) {
+    V[id] += sign * vf(fi, fj, fk);
+    M[id] += sign * mf(fi, fj, fk);
+    E[id] += sign * ef(fi, fj, fk);
+    return;
+  }
+  const int f = d.first(di, dj, dk), n = d.nm(di, dj, dk);
+  for (int q = f; q < f + n; ++q) {
+    const int m = d.smat(q);
+    V[m] += sign * d.sfv[side](q);
+    M[m] += sign * d.sfm[side](q);
+    E[m] += sign * d.sfe[side](q);
+  }
+}
+
+// Stores the per-material fluxes of one face computed from its donor.
+KOKKOS_INLINE_FUNCTION void store_face(const mat::DenseDev& d, int fi, int fj, int fk, int, int,
+                                       int, int, const Real* V, const Real* M, const Real* E) {
+  for (int m = 0; m < d.nmat; ++m) {
+    d.fv(m, fi, fj, fk) = V[m];
+    d.fm(m, fi, fj, fk) = M[m];
+    d.fe(m, fi, fj, fk) = E[m];
+  }
+}
+
+KOKKOS_INLINE_FUNCTION void store_face(const mat::CompactDev& d, int, int, int, int di, int dj,
+                                       int dk, int side, const Real* V, const Real* M,
+                                       const Real* E) {
+  if (d.mat(di, dj, dk) >= 0) return;  // a pure donor's flux is the face total
+  const int f = d.first(di, dj, dk), n = d.nm(di, dj, dk);
+  for (int q = f; q < f + n; ++q) {
+    const int m = d.smat(q);
+    d.sfv[side](q) = V[m];
+    d.sfm[side](q) = M[m];
+    d.sfe[side](q) = E[m];
+  }
+}
+
+KOKKOS_INLINE_FUNCTION int read_donor(const mat::DenseDev& d, const Field3&, const Field3&, int i,
+                                      int j, int k, Real* a, Real* r, Real* e) {
+  return mat::read_cell(d, i, j, k, a, r, e);
+}
+KOKKOS_INLINE_FUNCTION int read_donor(const mat::CompactDev& d, const Field3& rho, const Field3& en,
+                                      int i, int j, int k, Real* a, Real* r, Real* e) {
+  return mat::read_cell(d, rho, en, i, j, k, a, r, e);
+}
+
+// The cell update of one remap sweep as a content source for MaterialState::assign: owned
+// cells gain the fluxes through their two faces along d; other cells keep their content (the
+// halo exchange that follows replaces the ghosts).
+template <class Dev>
+struct RemapSource {
+  Dev dev;
+  Field3 rho, e, pre, post, vf, mf, ef;
+  int d, nmat;
+  int lo[3], hi[3];
+  Real min_fraction;
+
+  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const {
+    return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
+  }
+
+  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
+    read_donor(dev, rho, e, i, j, k, a, r, en);
+    Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];
+    for (int m = 0; m < nmat; ++m) V[m] = M[m] = E[m] = 0;
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
+    // low face: index (i,j,k); its donor is the cell below when the flow is positive
+    {
+      const Real f = vf(i, j, k);
+      if (f > 0)
+        add_face(dev, vf, mf, ef, i, j, k, i - sx, j - sy, k - sz, 1, Real(1), V, M, E);
+      else
+        add_face(dev, vf, mf, ef, i, j, k, i, j, k, 0, Real(1), V, M, E);
+    }
+    {
+      const int fi = i + sx, fj = j + sy, fk = k + sz;
+      const Real f = vf(fi, fj, fk);
+      if (f > 0)
+        add_face(dev, vf, mf, ef, fi, fj, fk, i, j, k, 1, Real(-1), V, M, E);
+      else
+        add_face(dev, vf, mf, ef, fi, fj, fk, fi, fj, fk, 0, Real(-1), V, M, E);
+    }
+    const Real p0 = pre(i, j, k), p1 = post(i, j, k);
+    Real vol[kMaxMaterials], mass[kMaxMaterials], ener[kMaxMaterials];
+    int big = -1;
+    for (int m = 0; m < nmat; ++m) {
+      const Real v0 = a[m] * p0;
+      const Real m0 = v0 * r[m];
+      vol[m] = v0 + V[m];
+      mass[m] = m0 + M[m];
+      ener[m] = en[m] * m0 + E[m];
+      if (vol[m] > 0 && (big < 0 || vol[m] > vol[big])) big = m;
+    }
+    if (big < 0) big = 0;
+    // A material below the smallest fraction leaves the cell; the largest material takes its
+    // mass and energy, so the cell's totals are unchanged.
+    Real vsum = 0;
+    for (int m = 0; m < nmat; ++m) {
+      if (m == big) continue;
+      const bool present = vol[m] > min_fraction * p1 && mass[m] > 0;
+      if (!present) {
+        mass[big] += mass[m];
+        ener[big] += ener[m];
+        vol[m] = mass[m] = ener[m] = 0;
+      }
+    }
+    for (int m = 0; m < nmat; ++m) vsum += vol[m];
+    int n = 0;
+    for (int m = 0; m < nmat; ++m) {
+      if (!(vol[m] > 0)) {
+        a[m] = r[m] = en[m] = 0;
+        continue;
+      }
+      a[m] = vol[m] / vsum;
+      r[m] = mass[m] / (a[m] * p1);
+      en[m] = ener[m] / mass[m];
+      ++n;
+    }
+    return n;
+  }
+};
+
+// Per-material volume, mass and energy fluxes through one face from its donor: a pure donor
+// uses the single-material van Leer face values (second order inside a material); a mixed
+// donor splits the volume flux by PLIC onion skin and carries the donor's material density
+// and energy (first order at interfaces).
+template <class Dev>
+struct FaceFluxes {
+  Dev dev;
+  Field3 rho, e, pre, vf, mf, ef;
+  int d, nmat, order, iface;
+  Real dx, dy, dz;
+
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
+    const Real f = vf(i, j, k);
+    const int dn = f > 0 ? -1 : 0;
+    const int st = f > 0 ? 1 : -1;
+    const int di = i + dn * sx, dj = j + dn * sy, dk = k + dn * sz;
+    const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
+    const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
+    const int side = f > 0 ? 1 : 0;
+    Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+    const int count = read_donor(dev, rho, e, di, dj, dk, a, r, en);
+    Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];
+    for (int m = 0; m < nmat; ++m) V[m] = M[m] = E[m] = 0;
+    const Real pd = pre(di, dj, dk);
+    if (count == 1) {
+      int m0 = 0;
+      for (int m = 0; m < nmat; ++m)
+        if (a[m] > 0) m0 = m;
+      const bool smooth = mat::pure_of(dev, ui, uj, uk, m0) && mat::pure_of(dev, wi, wj, wk, m0);
+      const int ord = smooth ? order : 1;
+      const Real sigma = mabs(f) / pd;
+      const Real rf = face_value(rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), sigma, ord);
+      const Real mflux = f * rf;
+      const Real sm = mabs(mflux) / (rho(di, dj, dk) * pd);
+      const Real efv = face_value(e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), sm, ord);
+      V[m0] = f;
+      M[m0] = mflux;
+      E[m0] = mflux * efv;
+      mf(i, j, k) = mflux;
+      ef(i, j, k) = mflux * efv;
+    } else {
+      // Onion skin: layer L holds the materials with id <= L; its plane is reconstructed from
+      // the cumulative fraction, and the material's flux is the difference of two layers.
+      const Real cellv = dx * dy * dz;
+      const Real af = mabs(f);
+      const Real scale = pd / cellv;  // the Lagrangian donor volume mapped onto the cell box
+      Real acc = 0, done = 0;
+      int left = count;
+      Real mtot = 0, etot = 0;
+      for (int m = 0; m < nmat; ++m) {
+        if (!(a[m] > 0)) continue;
+        --left;
+        acc += a[m];
+        Real vm;
+        if (left == 0) {
+          vm = af - done;
+        } else {
+          Real n[3] = {0, 0, 0};
+          if (iface == 0) {
+            Real st3[3][3][3];
+            for (int c = 0; c < 3; ++c)
+              for (int b = 0; b < 3; ++b)
+                for (int q = 0; q < 3; ++q)
+                  st3[q][b][c] =
+                      mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
+            plic::youngs_normal(st3, dx, dy, dz, n);
+          } else if (iface == 1) {
+            const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
+                           mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
+            n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
+          }
+          const Real layer =
+              scale * plic::material_flux(n, mmin(acc, Real(1)), dx, dy, dz, d, f > 0, af / scale);
+          const Real cum = mmin(mmax(layer, done), af);
+          vm = cum - done;
+          done = cum;
+        }
+        vm = mmin(mmax(vm, Real(0)), a[m] * pd);
+        const Real sv = f > 0 ? vm : -vm;
+        V[m] = sv;
+        M[m] = sv * r[m];
+        E[m] = M[m] * en[m];
+        mtot += M[m];
+        etot += E[m];
+      }
+      mf(i, j, k) = mtot;
+      ef(i, j, k) = etot;
+    }
+    store_face(dev, i, j, k, di, dj, dk, side, V, M, E);
+  }
+};
+
+}  // namespace
+
+void Hydro::mm_equation_of_state() {
+  const auto mats = mats_;
+  auto p = s_.p, c = s_.c, rho = s_.rho;
+  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                              mesh_.extent(Centering::Cell, 2)};
+  mm_->for_cells(
+      "eos::pressure_sound_speed", all_lo(), hi,
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        Real psum = 0, k2 = 0, plast = 0, clast = 0;
+        int n = 0;
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (!(m.alpha > 0)) continue;
+          const Real pm = mats.eos[m.m].pressure(*m.rho, *m.e);
+          const Real cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
+          *m.p = pm;
+          psum += m.alpha * pm;
+          k2 += m.alpha * *m.rho * cm * cm;
+          plast = pm;
+          clast = cm;
+          ++n;
+        }
+        if (n == 1) {
+          p(i, j, k) = plast;
+          c(i, j, k) = clast;
+        } else {
+          p(i, j, k) = psum;
+          c(i, j, k) = msqrt(k2 / rho(i, j, k));
+        }
+      });
+}
+
+void Hydro::mm_predictor(Real vol) {
+  const auto mats = mats_;
+  auto q = s_.q, ph = s_.p_half;
+  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                              mesh_.extent(Centering::Cell, 2)};
+  mm_->for_cells(
+      "lagrange::predictor", all_lo(), hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                        fz(i, j, k + 1) - fz(i, j, k);
+        const Real v_half = vol + dv;
+        Real sum = 0, last = 0;
+        int n = 0;
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (!(m.alpha > 0)) continue;
+          const Real mass = *m.rho * vol;
+          const Real e_half = *m.e - (*m.p + q(i, j, k)) * dv / mass;
+          const Real pm = mats.eos[m.m].pressure(mass / v_half, e_half);
+          *m.ph = pm;
+          sum += m.alpha * pm;
+          last = pm;
+          ++n;
+        }
+        ph(i, j, k) = n == 1 ? last : sum;
+      });
+}
+
+void Hydro::mm_corrector(Real vol) {
+  auto q = s_.q, rho = s_.rho, e = s_.e;
+  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                              mesh_.extent(Centering::Cell, 2)};
+  mm_->for_cells(
+      "lagrange::corrector", all_lo(), hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
+                        fz(i, j, k + 1) - fz(i, j, k);
+        Real rsum = 0, esum = 0, rlast = 0, elast = 0;
+        int n = 0;
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (!(m.alpha > 0)) continue;
+          const Real mass = *m.rho * vol;
+          *m.e -= (*m.ph + q(i, j, k)) * dv / mass;
+          *m.rho = mass / (vol + dv);
+          rsum += m.alpha * *m.rho;
+          esum += m.alpha * *m.rho * *m.e;
+          rlast = *m.rho;
+          elast = *m.e;
+          ++n;
+        }
+        if (cell.aliases()) return;
+        rho(i, j, k) = n == 1 ? rlast : rsum;
+        e(i, j, k) = n == 1 ? elast : esum / rsum;
+      });
+}
+
+template <class Dev>
+void Hydro::mm_face_fluxes(const Dev& dev, int d) {
+  const Geometry g = mesh_.geometry();
+  const int ng = Mesh::ng;
+  const auto fr = mesh_.range(Centering::Node, Region::Owned, d);
+  // faces of the owned cells along d; one ghost row across (the dual mesh reads it)
+  int lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = ng - 1;
+    hi[a] = ng + mesh_.owned_cells(a) + 1;
+  }
+  lo[d] = fr[0];
+  hi[d] = fr[1];
+  FaceFluxes<Dev> ff{
+      dev, s_.rho,  s_.e,       s_.pre_vol,     s_.vol_flux[d], s_.mass_flux[d], s_.energy_flux[d],
+      d,   mats_.n, opt_.order, opt_.interface, g.dx[0],        g.dx[1],         g.dx[2]};
+  Kokkos::parallel_for("remap::material_flux",
+                       Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}), ff);
+}
+
+template <class Dev>
+void Hydro::mm_cell_update(const Dev& dev, int d) {
+  const int ng = Mesh::ng;
+  RemapSource<Dev> src{
+      dev,
+      s_.rho,
+      s_.e,
+      s_.pre_vol,
+      s_.post_vol,
+      s_.vol_flux[d],
+      s_.mass_flux[d],
+      s_.energy_flux[d],
+      d,
+      mats_.n,
+      {ng, ng, ng},
+      {ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1), ng + mesh_.owned_cells(2)},
+      opt_.min_fraction};
+  mm_->assign("remap::material_update", src);
+}
+
+void Hydro::mm_remap_faces(int d) {
+  if (mm_->kind() == mat::LayoutKind::Dense)
+    mm_face_fluxes(mm_->dense(), d);
+  else
+    mm_face_fluxes(mm_->compact(), d);
+}
+
+void Hydro::mm_remap_cells(int d) {
+  if (mm_->kind() == mat::LayoutKind::Dense)
+    mm_cell_update(mm_->dense(), d);
+  else
+    mm_cell_update(mm_->compact(), d);
+}
+
+void Hydro::mm_ke_fix() {
+  auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol;
+  const int ng = Mesh::ng;
+  const std::array<int, 3> lo{ng, ng, ng};
+  const std::array<int, 3> hi{ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1),
+                              ng + mesh_.owned_cells(2)};
+  mm_->for_cells(
+      "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        Real sum = 0;
+        for (int c = 0; c < 2; ++c)
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) sum += kel(i + a, j + b, k + c);
+        if (!(sum > 0)) return;
+        // the same specific energy to every material keeps the cell average consistent
+        const Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (m.alpha > 0) *m.e += de;
+        }
+        if (!cell.aliases()) e(i, j, k) += de;
+      });
+}
+
+// Explicit instantiations for the layouts' device handles.
+template void Hydro::mm_face_fluxes(const mat::DenseDev&, int);
+template void Hydro::mm_face_fluxes(const mat::CompactDev&, int);
+template void Hydro::mm_cell_update(const mat::DenseDev&, int);
+template void Hydro::mm_cell_update(const mat::CompactDev&, int);
+
+}  // namespace mp::hydro

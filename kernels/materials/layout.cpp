@@ -1,0 +1,407 @@
+#include "materials/layout.hpp"
+
+#include <climits>
+
+#include "core/error.hpp"
+#include "core/math.hpp"
+#include "core/reduce.hpp"
+
+namespace mp::mat {
+
+namespace {
+
+MPI_Datatype mpi_real() {
+  return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
+}
+
+// Content of the ghost slabs of one halo sweep along axis d: cells on a physical boundary copy
+// their mirror (reflective) or the wall cell (outflow) of the same block; cells next to a
+// neighbour rank read the received buffer.
+template <class Dev>
+struct HaloSource {
+  Dev dev;
+  Field3 rho, e;  // cell arrays (compact reads pure cells from them)
+  int d, ng, nl, nmat;
+  int ext[3];
+  int mode[2];  // per side: 0 neighbour rank, 1 reflective, 2 outflow
+  Buffer recv[2];
+
+  KOKKOS_INLINE_FUNCTION int side_of(int i, int j, int k) const {
+    const int x = d == 0 ? i : d == 1 ? j : k;
+    if (x < ng) return 0;
+    if (x >= ng + nl) return 1;
+    return -1;
+  }
+  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const { return side_of(i, j, k) >= 0; }
+  KOKKOS_INLINE_FUNCTION int read(int i, int j, int k, Real* a, Real* r, Real* en) const;
+  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
+    const int s = side_of(i, j, k);
+    int idx[3] = {i, j, k};
+    const int x = idx[d];
+    if (mode[s] == 0) {
+      // slab cell index with the axis d running over the ng ghost layers
+      int loc[3] = {i, j, k}, n[3] = {ext[0], ext[1], ext[2]};
+      loc[d] = s == 0 ? x : x - (ng + nl);
+      n[d] = ng;
+      const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
+      const Buffer& b = recv[s];
+      int cnt = 0;
+      for (int m = 0; m < nmat; ++m) {
+        const long o = (cell * nmat + m) * 3;
+        a[m] = b(o);
+        r[m] = b(o + 1);
+        en[m] = b(o + 2);
+        cnt += a[m] > 0 ? 1 : 0;
+      }
+      return cnt;
+    }
+    if (mode[s] == 1)
+      idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl) - 1 - x;  // mirror across the face
+    else
+      idx[d] = s == 0 ? ng : ng + nl - 1;  // the wall cell
+    return read(idx[0], idx[1], idx[2], a, r, en);
+  }
+};
+
+template <>
+KOKKOS_INLINE_FUNCTION int HaloSource<DenseDev>::read(int i, int j, int k, Real* a, Real* r,
+                                                      Real* en) const {
+  return read_cell(dev, i, j, k, a, r, en);
+}
+template <>
+KOKKOS_INLINE_FUNCTION int HaloSource<CompactDev>::read(int i, int j, int k, Real* a, Real* r,
+                                                        Real* en) const {
+  return read_cell(dev, rho, e, i, j, k, a, r, en);
+}
+
+}  // namespace
+
+MaterialState::MaterialState(const Mesh& mesh, LayoutKind kind, int nmat, Field3 rho, Field3 e,
+                             Field3 p, Field3 ph)
+    : mesh_(mesh), kind_(kind), nmat_(nmat), rho_(rho), e_(e), p_(p), ph_(ph) {
+  if (nmat < 1 || nmat > kMaxMaterials)
+    throw RunError("a scene holds 1 to " + std::to_string(kMaxMaterials) + " materials, not " +
+                   std::to_string(nmat));
+  ex_ = mesh.extent(Centering::Cell, 0);
+  ey_ = mesh.extent(Centering::Cell, 1);
+  ez_ = mesh.extent(Centering::Cell, 2);
+  if (kind == LayoutKind::Dense) {
+    dense_.nmat = nmat;
+    auto make = [&](const char* n) { return Field4(std::string(n), nmat, ex_, ey_, ez_); };
+    dense_.alpha = make("dense::alpha");
+    dense_.rho = make("dense::rho");
+    dense_.e = make("dense::e");
+    dense_.p = make("dense::p");
+    dense_.ph = make("dense::p_half");
+    // face fluxes: node extent along every axis covers the faces of every sweep
+    auto face = [&](const char* n) {
+      return Field4(std::string(n), nmat, ex_ + 1, ey_ + 1, ez_ + 1);
+    };
+    dense_.fv = face("dense::volume_flux");
+    dense_.fm = face("dense::mass_flux");
+    dense_.fe = face("dense::energy_flux");
+    return;
+  }
+  for (CompactDev* c : {&compact_, &next_}) {
+    c->nmat = nmat;
+    c->mat = IntField3("compact::mat", ex_, ey_, ez_);
+    c->first = IntField3("compact::first", ex_, ey_, ez_);
+    c->nm = IntField3("compact::nm", ex_, ey_, ez_);
+    c->mixed = IntBuffer("compact::mixed", 1);
+    resize_pool(*c, 1);
+    Kokkos::deep_copy(c->nm, 1);  // every cell pure material 0 until painted
+  }
+}
+
+void MaterialState::resize_pool(CompactDev& c, int slots) const {
+  if (c.smat.extent(0) >= std::size_t(slots) && c.smat.extent(0) > 0) return;
+  const int cap = std::max(slots + slots / 4, 16);  // room to grow before the next allocation
+  auto alloc = [&](const char* n) {
+    return Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(n)), cap);
+  };
+  c.smat = IntBuffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "compact::slot_mat"), cap);
+  c.salpha = alloc("compact::slot_alpha");
+  c.srho = alloc("compact::slot_rho");
+  c.se = alloc("compact::slot_e");
+  c.sp = alloc("compact::slot_p");
+  c.sph = alloc("compact::slot_p_half");
+  for (int s = 0; s < 2; ++s) {
+    c.sfv[s] = alloc("compact::slot_volume_flux");
+    c.sfm[s] = alloc("compact::slot_mass_flux");
+    c.sfe[s] = alloc("compact::slot_energy_flux");
+  }
+}
+
+void MaterialState::exchange() {
+  const int ng = Mesh::ng;
+  const int nmat = nmat_;
+  const int ext[3] = {ex_, ey_, ez_};
+  for (int d = 0; d < 3; ++d) {
+    const int nl = mesh_.owned_cells(d);
+    int n[3] = {ext[0], ext[1], ext[2]};
+    n[d] = ng;
+    const long cells = long(n[0]) * n[1] * n[2];
+    const long count = cells * nmat * 3;
+    Buffer send[2], recv[2];
+    int mode[2] = {0, 0};
+    bool any = false;
+    for (int s = 0; s < 2; ++s) {
+      if (mesh_.physical_boundary(d, s)) {
+        mode[s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
+        continue;
+      }
+      any = true;
+      send[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), count);
+      recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), count);
+      // pack the ng owned layers next to face s
+      const int first = s == 0 ? ng : nl;
+      int lo[3] = {0, 0, 0}, hi[3] = {ext[0], ext[1], ext[2]};
+      lo[d] = first;
+      hi[d] = first + ng;
+      auto buf = send[s];
+      const int n0 = n[0], n1 = n[1];
+      const int dd = d;
+      auto pack = [=] KOKKOS_FUNCTION(int i, int j, int k, const Real* a, const Real* r,
+                                      const Real* en) {
+        int loc[3] = {i, j, k};
+        loc[dd] -= first;
+        const long cell = loc[0] + long(n0) * (loc[1] + long(n1) * loc[2]);
+        for (int m = 0; m < nmat; ++m) {
+          const long o = (cell * nmat + m) * 3;
+          buf(o) = a[m];
+          buf(o + 1) = r[m];
+          buf(o + 2) = en[m];
+        }
+      };
+      const Policy3 slab({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
+      if (kind_ == LayoutKind::Dense) {
+        const DenseDev dv = dense_;
+        Kokkos::parallel_for(
+            "matter::pack", slab, KOKKOS_LAMBDA(int i, int j, int k) {
+              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+              read_cell(dv, i, j, k, a, r, en);
+              pack(i, j, k, a, r, en);
+            });
+      } else {
+        const CompactDev cv = compact_;
+        auto crho = rho_, ce = e_;
+        Kokkos::parallel_for(
+            "matter::pack", slab, KOKKOS_LAMBDA(int i, int j, int k) {
+              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+              read_cell(cv, crho, ce, i, j, k, a, r, en);
+              pack(i, j, k, a, r, en);
+            });
+      }
+    }
+    if (any) {
+      Kokkos::fence();
+      typename Buffer::HostMirror hs[2], hr[2];
+      MPI_Request req[4];
+      int nreq = 0;
+      for (int s = 0; s < 2; ++s) {
+        if (mode[s] != 0) continue;
+        hs[s] = Kokkos::create_mirror_view(send[s]);
+        hr[s] = Kokkos::create_mirror_view(recv[s]);
+        Kokkos::deep_copy(hs[s], send[s]);
+        MPI_CHECK(MPI_Irecv(hr[s].data(), int(count), mpi_real(), mesh_.neighbor(d, s),
+                            100 + 10 * d + 1 - s, mesh_.comm(), &req[nreq++]));
+      }
+      for (int s = 0; s < 2; ++s) {
+        if (mode[s] != 0) continue;
+        MPI_CHECK(MPI_Isend(hs[s].data(), int(count), mpi_real(), mesh_.neighbor(d, s),
+                            100 + 10 * d + s, mesh_.comm(), &req[nreq++]));
+      }
+      MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
+      for (int s = 0; s < 2; ++s)
+        if (mode[s] == 0) Kokkos::deep_copy(recv[s], hr[s]);
+    }
+    if (kind_ == LayoutKind::Dense) {
+      HaloSource<DenseDev> src{dense_,
+                               rho_,
+                               e_,
+                               d,
+                               ng,
+                               nl,
+                               nmat,
+                               {ext[0], ext[1], ext[2]},
+                               {mode[0], mode[1]},
+                               {recv[0], recv[1]}};
+      assign("matter::halo", src);
+    } else {
+      HaloSource<CompactDev> src{compact_,
+                                 rho_,
+                                 e_,
+                                 d,
+                                 ng,
+                                 nl,
+                                 nmat,
+                                 {ext[0], ext[1], ext[2]},
+                                 {mode[0], mode[1]},
+                                 {recv[0], recv[1]}};
+      assign("matter::halo", src);
+    }
+  }
+}
+
+std::vector<double> MaterialState::material_masses() const {
+  const Geometry g = mesh_.geometry();
+  const double vol = g.cell_volume();
+  SumN<kMaxMaterials> sum;
+  const int ng = Mesh::ng;
+  std::array<int, 3> lo{ng, ng, ng},
+      hi{ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1), ng + mesh_.owned_cells(2)};
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    const int nmat = nmat_;
+    Kokkos::parallel_reduce(
+        "matter::masses", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+        KOKKOS_LAMBDA(int i, int j, int k, SumN<kMaxMaterials>& acc) {
+          for (int m = 0; m < nmat; ++m)
+            acc.v[m] += double(d.alpha(m, i, j, k)) * double(d.rho(m, i, j, k)) * vol;
+        },
+        Kokkos::Sum<SumN<kMaxMaterials>>(sum));
+  } else {
+    const CompactDev d = compact_;
+    auto rho = rho_;
+    SumN<kMaxMaterials> pure, mixed;
+    Kokkos::parallel_reduce(
+        "matter::masses[pure]", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+        KOKKOS_LAMBDA(int i, int j, int k, SumN<kMaxMaterials>& acc) {
+          const int m = d.mat(i, j, k);
+          if (m >= 0) acc.v[m] += double(rho(i, j, k)) * vol;
+        },
+        Kokkos::Sum<SumN<kMaxMaterials>>(pure));
+    const int ey = ey_, ez = ez_;
+    Kokkos::parallel_reduce(
+        "matter::masses[mixed]", Policy1(0, d.nmixed),
+        KOKKOS_LAMBDA(int r, SumN<kMaxMaterials>& acc) {
+          const int lin = d.mixed(r);
+          const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
+          if (i < lo[0] || i >= hi[0] || j < lo[1] || j >= hi[1] || k < lo[2] || k >= hi[2]) return;
+          const int f = d.first(i, j, k);
+          for (int q = f; q < f + d.nm(i, j, k); ++q)
+            acc.v[d.smat(q)] += double(d.salpha(q)) * double(d.srho(q)) * vol;
+        },
+        Kokkos::Sum<SumN<kMaxMaterials>>(mixed));
+    for (int m = 0; m < kMaxMaterials; ++m) sum.v[m] = pure.v[m] + mixed.v[m];
+  }
+  std::vector<double> out(nmat_);
+  MPI_Allreduce(sum.v, out.data(), nmat_, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  return out;
+}
+
+Field3 MaterialState::fraction(int m) const {
+  Field3 f(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fraction"), ex_, ey_, ez_);
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    Kokkos::parallel_for(
+        "matter::fraction", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+        KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = d.alpha(m, i, j, k); });
+    return f;
+  }
+  const CompactDev d = compact_;
+  Kokkos::parallel_for(
+      "matter::fraction", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
+        f(i, j, k) = cumulative_fraction(d, i, j, k, m) -
+                     (m > 0 ? cumulative_fraction(d, i, j, k, m - 1) : Real(0));
+        // exact for a pure cell; a mixed cell reads its slot directly
+        if (d.mat(i, j, k) < 0) {
+          Real a = 0;
+          for (int q = d.first(i, j, k); q < d.first(i, j, k) + d.nm(i, j, k); ++q)
+            if (d.smat(q) == m) a = d.salpha(q);
+          f(i, j, k) = a;
+        }
+      });
+  return f;
+}
+
+long MaterialState::mixed_cells() const {
+  if (kind_ == LayoutKind::Compact) return compact_.nmixed;
+  const DenseDev d = dense_;
+  const int nmat = nmat_;
+  long n = 0;
+  Kokkos::parallel_reduce(
+      "matter::count_mixed", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+        int c = 0;
+        for (int m = 0; m < nmat; ++m) c += d.alpha(m, i, j, k) > 0 ? 1 : 0;
+        if (c > 1) ++acc;
+      },
+      n);
+  return n;
+}
+
+long MaterialState::slots() const {
+  if (kind_ == LayoutKind::Dense) return long(nmat_) * ex_ * ey_ * ez_;
+  const CompactDev d = compact_;
+  long used = 0;
+  Kokkos::parallel_reduce(
+      "matter::count_slots", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+        if (d.mat(i, j, k) < 0) acc += d.nm(i, j, k);
+      },
+      used);
+  return used;
+}
+
+double MaterialState::bytes() const {
+  const double cells = double(ex_) * ey_ * ez_;
+  if (kind_ == LayoutKind::Dense)
+    // alpha, rho, e, p, p_half per material and cell, plus the three face-flux arrays
+    return double(sizeof(Real)) * nmat_ * (5 * cells + 3 * double(ex_ + 1) * (ey_ + 1) * (ez_ + 1));
+  // three int cell arrays, and per slot: material id, 5 state values, 6 face fluxes
+  const double pool = double(compact_.smat.extent(0));
+  return 3 * sizeof(int) * cells + pool * (sizeof(int) + 11 * sizeof(Real)) +
+         sizeof(int) * double(compact_.mixed.extent(0));
+}
+
+long MaterialState::first_bad(double vals[3]) const {
+  const Geometry g = mesh_.geometry();
+  const long nx = mesh_.global_cells(0), ny = mesh_.global_cells(1);
+  const int ng = Mesh::ng;
+  const int hx = ng + mesh_.owned_cells(0), hy = ng + mesh_.owned_cells(1),
+            hz = ng + mesh_.owned_cells(2);
+  auto bad = [] KOKKOS_FUNCTION(Real r, Real e) {
+    return !(r > 0) || !(e >= 0) || !misfinite(r) || !misfinite(e);
+  };
+  long first = LONG_MAX;
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    const int nmat = nmat_;
+    Kokkos::parallel_reduce(
+        "matter::check", Policy3({ng, ng, ng}, {hx, hy, hz}),
+        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+          for (int m = 0; m < nmat; ++m)
+            if (d.alpha(m, i, j, k) > 0 && bad(d.rho(m, i, j, k), d.e(m, i, j, k))) {
+              const long id =
+                  g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+              if (id < acc) acc = id;
+            }
+        },
+        Kokkos::Min<long>(first));
+  } else {
+    const CompactDev d = compact_;
+    const int ey = ey_, ez = ez_;
+    Kokkos::parallel_reduce(
+        "matter::check", Policy1(0, d.nmixed),
+        KOKKOS_LAMBDA(int r, long& acc) {
+          const int lin = d.mixed(r);
+          const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
+          if (i < ng || i >= hx || j < ng || j >= hy || k < ng || k >= hz) return;
+          const int f = d.first(i, j, k);
+          for (int q = f; q < f + d.nm(i, j, k); ++q)
+            if (bad(d.srho(q), d.se(q))) {
+              const long id =
+                  g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+              if (id < acc) acc = id;
+            }
+        },
+        Kokkos::Min<long>(first));
+  }
+  long global = LONG_MAX;
+  MPI_Allreduce(&first, &global, 1, MPI_LONG, MPI_MIN, mesh_.comm());
+  vals[0] = vals[1] = vals[2] = 0;
+  return global;
+}
+
+}  // namespace mp::mat

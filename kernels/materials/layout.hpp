@@ -1,0 +1,391 @@
+// Per-material state behind two layouts, picked at run time (DESIGN.md §3.1):
+//
+//  dense   (the paper's layout): alpha, rho, e, p, p_half are (nmat, i, j, k) arrays, one
+//          contiguous block per material; every kernel visits every material of every cell.
+//          Memory and work grow as cells x nmat.
+//  compact (this project's default): a pure cell keeps its material's state in the cell arrays
+//          (rho, e, p, p_half) and its material id in `mat`; a mixed cell (mat < 0) owns a run
+//          of slots [first, first + nm) in a pool, sorted by material id, and sits in the mixed
+//          list. Kernels run an MDRange over the pure cells and a range over the mixed list.
+//          Memory and work grow as cells + sum over mixed cells of their material count.
+//
+// The pool covers every cell of the block, ghosts included. It is rebuilt, never edited in
+// place, whenever cells change their material content (after each remap sweep, after each
+// halo exchange): a count pass, an exclusive parallel_scan over the cells for the slot offsets
+// and mixed-list rows, and a fill pass, into a second buffer set that is then swapped in.
+//
+// Kernels never see which layout they run on: they get a cell accessor (count(), get(s),
+// aliases()) and call the same point functions through it. Summation over a cell's materials
+// runs in material-id order in both layouts, and absent materials (dense) add exact zeros, so
+// both layouts produce the same bits.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "eos/eos.hpp"
+#include "mesh/mesh.hpp"
+
+namespace mp::mat {
+
+// Largest number of materials one scene may hold (local per-cell arrays are sized by it).
+constexpr int kMaxMaterials = 16;
+
+enum class LayoutKind { Dense, Compact };
+
+// The EOS of each material, copied into every kernel that needs it.
+struct MaterialSet {
+  int n = 0;
+  eos::Eos eos[kMaxMaterials];
+};
+
+// One material of one cell as a kernel sees it: the volume fraction by value, the state by
+// pointer into wherever the layout keeps it.
+struct MatRef {
+  int m;
+  Real alpha;
+  Real *rho, *e, *p, *ph;
+};
+
+using Field4 = Kokkos::View<Real****, Kokkos::LayoutRight, MemSpace>;
+using IntBuffer = Kokkos::View<int*, MemSpace>;
+
+// ------------------------------------------------------------------------------------------
+// Device-side handles.
+
+struct DenseDev {
+  int nmat = 0;
+  Field4 alpha, rho, e, p, ph;
+  Field4 fv, fm, fe;  // signed volume, mass, energy flux of each material through each face
+};
+
+struct CompactDev {
+  int nmat = 0;
+  IntField3 mat;    // material of a pure cell; -(row + 1) for a mixed cell (row in `mixed`)
+  IntField3 first;  // first slot of a mixed cell
+  IntField3 nm;     // number of materials in the cell
+  IntBuffer smat;   // slot -> material id
+  Buffer salpha, srho, se, sp, sph;
+  Buffer sfv[2], sfm[2], sfe[2];  // slot fluxes through the cell's low (0) / high (1) face
+  IntBuffer mixed;                // row -> linear cell index (i * ey + j) * ez + k
+  int nmixed = 0;
+};
+
+// Accessors handed to per-cell operations.
+struct DenseCell {
+  const DenseDev* d;
+  int i, j, k;
+  KOKKOS_INLINE_FUNCTION int count() const { return d->nmat; }
+  KOKKOS_INLINE_FUNCTION bool aliases() const { return false; }
+  KOKKOS_INLINE_FUNCTION MatRef get(int s) const {
+    return {s,
+            d->alpha(s, i, j, k),
+            &d->rho(s, i, j, k),
+            &d->e(s, i, j, k),
+            &d->p(s, i, j, k),
+            &d->ph(s, i, j, k)};
+  }
+};
+
+// A pure compact cell: its one material's state IS the cell state (aliases() == true).
+struct PureCell {
+  int m;
+  Real *rho, *e, *p, *ph;
+  KOKKOS_INLINE_FUNCTION int count() const { return 1; }
+  KOKKOS_INLINE_FUNCTION bool aliases() const { return true; }
+  KOKKOS_INLINE_FUNCTION MatRef get(int) const { return {m, Real(1), rho, e, p, ph}; }
+};
+
+struct MixedCell {
+  const CompactDev* d;
+  int first, n;
+  KOKKOS_INLINE_FUNCTION int count() const { return n; }
+  KOKKOS_INLINE_FUNCTION bool aliases() const { return false; }
+  KOKKOS_INLINE_FUNCTION MatRef get(int s) const {
+    const int q = first + s;
+    return {d->smat(q), d->salpha(q), &d->srho(q), &d->se(q), &d->sp(q), &d->sph(q)};
+  }
+};
+
+// Reads a cell's content into per-material arrays (zero where absent); returns the number of
+// materials present.
+KOKKOS_INLINE_FUNCTION int read_cell(const DenseDev& d, int i, int j, int k, Real* alpha, Real* rho,
+                                     Real* e) {
+  int n = 0;
+  for (int m = 0; m < d.nmat; ++m) {
+    alpha[m] = d.alpha(m, i, j, k);
+    rho[m] = d.rho(m, i, j, k);
+    e[m] = d.e(m, i, j, k);
+    n += alpha[m] > 0 ? 1 : 0;
+  }
+  return n;
+}
+
+KOKKOS_INLINE_FUNCTION int read_cell(const CompactDev& d, const Field3& crho, const Field3& ce,
+                                     int i, int j, int k, Real* alpha, Real* rho, Real* e) {
+  for (int m = 0; m < d.nmat; ++m) alpha[m] = rho[m] = e[m] = 0;
+  const int id = d.mat(i, j, k);
+  if (id >= 0) {
+    alpha[id] = 1;
+    rho[id] = crho(i, j, k);
+    e[id] = ce(i, j, k);
+    return 1;
+  }
+  const int f = d.first(i, j, k), n = d.nm(i, j, k);
+  for (int q = f; q < f + n; ++q) {
+    alpha[d.smat(q)] = d.salpha(q);
+    rho[d.smat(q)] = d.srho(q);
+    e[d.smat(q)] = d.se(q);
+  }
+  return n;
+}
+
+// Sum of the volume fractions of the materials with id <= level (the onion-skin cumulative
+// fraction that Youngs' reconstruction of layer `level` works on).
+KOKKOS_INLINE_FUNCTION Real cumulative_fraction(const DenseDev& d, int i, int j, int k, int level) {
+  Real s = 0;
+  for (int m = 0; m <= level; ++m) s += d.alpha(m, i, j, k);
+  return s;
+}
+
+KOKKOS_INLINE_FUNCTION Real cumulative_fraction(const CompactDev& d, int i, int j, int k,
+                                                int level) {
+  const int id = d.mat(i, j, k);
+  if (id >= 0) return id <= level ? Real(1) : Real(0);
+  Real s = 0;
+  const int f = d.first(i, j, k), n = d.nm(i, j, k);
+  for (int q = f; q < f + n && d.smat(q) <= level; ++q) s += d.salpha(q);
+  return s;
+}
+
+// Does cell (i,j,k) hold material m and nothing else?
+KOKKOS_INLINE_FUNCTION bool pure_of(const DenseDev& d, int i, int j, int k, int m) {
+  return d.alpha(m, i, j, k) == Real(1);
+}
+KOKKOS_INLINE_FUNCTION bool pure_of(const CompactDev& d, int i, int j, int k, int m) {
+  return d.mat(i, j, k) == m;
+}
+
+// Cell averages of a content: rho = sum alpha_m rho_m, e mass-weighted; a single material gives
+// its own values exactly.
+KOKKOS_INLINE_FUNCTION void cell_average(int nmat, const Real* alpha, const Real* rho,
+                                         const Real* e, Real& rho_c, Real& e_c) {
+  Real r = 0, en = 0;
+  int n = 0, last = 0;
+  for (int m = 0; m < nmat; ++m) {
+    if (!(alpha[m] > 0)) continue;
+    r += alpha[m] * rho[m];
+    en += alpha[m] * rho[m] * e[m];
+    ++n;
+    last = m;
+  }
+  if (n == 1) {
+    rho_c = rho[last];
+    e_c = e[last];
+  } else {
+    rho_c = r;
+    e_c = en / r;
+  }
+}
+
+// ------------------------------------------------------------------------------------------
+// Host-side owner of the material state.
+
+class MaterialState {
+ public:
+  // `rho, e, p, ph` are the hydro's cell arrays (cell averages; a pure compact cell's state).
+  MaterialState(const Mesh& mesh, LayoutKind kind, int nmat, Field3 rho, Field3 e, Field3 p,
+                Field3 ph);
+
+  LayoutKind kind() const { return kind_; }
+  int nmat() const { return nmat_; }
+  const DenseDev& dense() const { return dense_; }
+  const CompactDev& compact() const { return compact_; }
+  Field3 cell_rho() const { return rho_; }
+  Field3 cell_e() const { return e_; }
+
+  // Runs op(i, j, k, cell) on every cell of the box [lo, hi): one MDRange (dense), or an
+  // MDRange over the pure cells and a range over the mixed list (compact).
+  template <class Op>
+  void for_cells(const std::string& name, const std::array<int, 3>& lo,
+                 const std::array<int, 3>& hi, Op op) const;
+
+  // Sets the content of every cell with src.changed(i,j,k): src.content(i,j,k, alpha, rho, e)
+  // fills per-material arrays and returns the count of materials present. Other cells keep
+  // their content. Cell averages of changed cells are written to the cell arrays.
+  template <class Source>
+  void assign(const std::string& name, const Source& src);
+
+  // Fills the ghost cells' material content from the neighbours and the boundary conditions
+  // (axis by axis, like the field halo; messages carry nmat x (alpha, rho, e) per cell).
+  void exchange();
+
+  // Mass of each material over the owned cells (global sums).
+  std::vector<double> material_masses() const;
+  // Volume fraction of material m on the block (ghosts included), for output.
+  Field3 fraction(int m) const;
+  // Number of mixed cells and slots owned by this rank's block (ghosts included) and the bytes
+  // the per-material state takes (for the perf harness).
+  long mixed_cells() const;
+  long slots() const;
+  double bytes() const;
+  // First owned cell (global linear index, or LONG_MAX) holding a material with non-positive
+  // or non-finite density, negative or non-finite energy; fills `vals` with (m, rho, e).
+  long first_bad(double vals[3]) const;
+
+ private:
+  void resize_pool(CompactDev& c, int slots) const;
+
+  const Mesh& mesh_;
+  LayoutKind kind_;
+  int nmat_;
+  Field3 rho_, e_, p_, ph_;
+  DenseDev dense_;
+  CompactDev compact_, next_;  // current and rebuild target (swapped after each rebuild)
+  int ex_, ey_, ez_;
+};
+
+// ------------------------------------------------------------------------------------------
+// Templates.
+
+template <class Op>
+void MaterialState::for_cells(const std::string& name, const std::array<int, 3>& lo,
+                              const std::array<int, 3>& hi, Op op) const {
+  const Policy3 box({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    Kokkos::parallel_for(
+        name, box, KOKKOS_LAMBDA(int i, int j, int k) {
+          const DenseCell c{&d, i, j, k};
+          op(i, j, k, c);
+        });
+    return;
+  }
+  const CompactDev d = compact_;
+  auto rho = rho_, e = e_, p = p_, ph = ph_;
+  Kokkos::parallel_for(
+      name + "[pure]", box, KOKKOS_LAMBDA(int i, int j, int k) {
+        const int m = d.mat(i, j, k);
+        if (m < 0) return;
+        const PureCell c{m, &rho(i, j, k), &e(i, j, k), &p(i, j, k), &ph(i, j, k)};
+        op(i, j, k, c);
+      });
+  if (d.nmixed == 0) return;
+  const int ey = ey_, ez = ez_;
+  const int l0 = lo[0], l1 = lo[1], l2 = lo[2], h0 = hi[0], h1 = hi[1], h2 = hi[2];
+  Kokkos::parallel_for(
+      name + "[mixed]", Policy1(0, d.nmixed), KOKKOS_LAMBDA(int r) {
+        const int lin = d.mixed(r);
+        const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
+        if (i < l0 || i >= h0 || j < l1 || j >= h1 || k < l2 || k >= h2) return;
+        const MixedCell c{&d, d.first(i, j, k), d.nm(i, j, k)};
+        op(i, j, k, c);
+      });
+}
+
+template <class Source>
+void MaterialState::assign(const std::string& name, const Source& src) {
+  const int nmat = nmat_;
+  auto crho = rho_, ce = e_;
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    Kokkos::parallel_for(
+        name, Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
+          if (!src.changed(i, j, k)) return;
+          Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+          for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+          src.content(i, j, k, a, r, en);
+          for (int m = 0; m < nmat; ++m) {
+            d.alpha(m, i, j, k) = a[m];
+            d.rho(m, i, j, k) = a[m] > 0 ? r[m] : Real(0);
+            d.e(m, i, j, k) = a[m] > 0 ? en[m] : Real(0);
+          }
+          cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+        });
+    return;
+  }
+  // Compact: count, scan, fill into the second buffer set, swap.
+  const CompactDev old = compact_;
+  CompactDev nw = next_;
+  const int ey = ey_, ez = ez_;
+  Kokkos::parallel_for(
+      name + "::count", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
+        if (!src.changed(i, j, k)) {
+          nw.nm(i, j, k) = old.nm(i, j, k);
+          return;
+        }
+        Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+        for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+        src.content(i, j, k, a, r, en);
+        int n = 0;
+        for (int m = 0; m < nmat; ++m) n += a[m] > 0 ? 1 : 0;
+        nw.nm(i, j, k) = n;
+      });
+  // Slots before each cell (low 32 bits) and mixed rows before it (high bits), in one scan.
+  const long ncell = long(ex_) * ey_ * ez_;
+  long long total = 0;
+  Kokkos::parallel_scan(
+      name + "::scan", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
+      KOKKOS_LAMBDA(long lin, long long& acc, bool final) {
+        const int k = int(lin % ez), j = int((lin / ez) % ey), i = int(lin / (long(ez) * ey));
+        const int n = nw.nm(i, j, k);
+        if (final) {
+          nw.first(i, j, k) = int(acc & 0xffffffffLL);
+          nw.mat(i, j, k) = n > 1 ? -int(acc >> 32) - 1 : 0;
+        }
+        if (n > 1) acc += (1LL << 32) + n;
+      },
+      total);
+  const int slots = int(total & 0xffffffffLL);
+  const int rows = int(total >> 32);
+  resize_pool(nw, slots);
+  if (int(nw.mixed.extent(0)) < rows)
+    nw.mixed = IntBuffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "mixed_list"),
+                         std::max(rows, 1) + rows / 4);
+  nw.nmixed = rows;
+  Kokkos::parallel_for(
+      name + "::fill", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
+        const int n = nw.nm(i, j, k);
+        const int q0 = nw.first(i, j, k);
+        if (n > 1) nw.mixed(-nw.mat(i, j, k) - 1) = (i * ey + j) * ez + k;
+        if (!src.changed(i, j, k)) {
+          const int id = old.mat(i, j, k);
+          if (id >= 0) {
+            nw.mat(i, j, k) = id;
+            return;
+          }
+          const int f = old.first(i, j, k);
+          for (int s = 0; s < n; ++s) {
+            nw.smat(q0 + s) = old.smat(f + s);
+            nw.salpha(q0 + s) = old.salpha(f + s);
+            nw.srho(q0 + s) = old.srho(f + s);
+            nw.se(q0 + s) = old.se(f + s);
+            nw.sp(q0 + s) = old.sp(f + s);
+          }
+          return;
+        }
+        Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+        for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+        src.content(i, j, k, a, r, en);
+        if (n == 1) {
+          for (int m = 0; m < nmat; ++m)
+            if (a[m] > 0) nw.mat(i, j, k) = m;
+        } else {
+          int q = q0;
+          for (int m = 0; m < nmat; ++m) {
+            if (!(a[m] > 0)) continue;
+            nw.smat(q) = m;
+            nw.salpha(q) = a[m];
+            nw.srho(q) = r[m];
+            nw.se(q) = en[m];
+            nw.sp(q) = 0;
+            ++q;
+          }
+        }
+        cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+      });
+  std::swap(compact_, next_);
+  compact_ = nw;
+}
+
+}  // namespace mp::mat
