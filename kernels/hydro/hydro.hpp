@@ -35,7 +35,7 @@ struct Options {
   // the largest material of the cell).
   mat::LayoutKind layout = mat::LayoutKind::Compact;
   int interface = 0;
-  Real min_fraction = Real(1e-10);
+  Real min_fraction = Real(1e-14);
 };
 
 struct State {

@@ -137,11 +137,15 @@ struct RemapSource {
     }
     if (big < 0) big = 0;
     // A material below the smallest fraction leaves the cell; the largest material takes its
-    // mass and energy, so the cell's totals are unchanged.
+    // mass and energy, so the cell's totals are unchanged (the material's own total changes by
+    // at most min_fraction of a cell's mass per removal: 1e-14 keeps it at round-off).
     Real vsum = 0;
     for (int m = 0; m < nmat; ++m) {
       if (m == big) continue;
-      const bool present = vol[m] > min_fraction * p1 && mass[m] > 0;
+      // a sliver (below 1e-6 of the cell) whose energy went negative by cancellation of
+      // nearly equal fluxes leaves too, rather than stop the run
+      const bool sliver_bad = vol[m] < Real(1e-6) * p1 && !(ener[m] >= 0);
+      const bool present = vol[m] > min_fraction * p1 && mass[m] > 0 && !sliver_bad;
       if (!present) {
         mass[big] += mass[m];
         ener[big] += ener[m];

@@ -63,7 +63,7 @@ struct NumericsSpec {
   int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
   std::string layout = "compact";    // per-material storage: compact | dense
   std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
-  double min_fraction = 1e-10;       // a material below this volume fraction leaves a cell
+  double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
 };
 
 struct OutputSpec {
