@@ -14,6 +14,7 @@ namespace {
 
 struct Fields {
   std::vector<double> rho, e, u, v, w;
+  std::vector<std::vector<double>> fractions;  // per material (multi-material scenes)
   long cycles = 0;
 };
 
@@ -33,6 +34,9 @@ Fields run_on(const Scene& scene, int nranks) {
     f.u = test::gather(m, s.u, Centering::Node);
     f.v = test::gather(m, s.v, Centering::Node);
     f.w = test::gather(m, s.w, Centering::Node);
+    if (const mat::MaterialState* mm = r.sim->hydro().materials())
+      for (int q = 0; q < mm->nmat(); ++q)
+        f.fractions.push_back(test::gather(m, mm->fraction(q), Centering::Cell));
     f.cycles = r.result.cycles;
     r.sim.reset();
     MPI_Comm_free(&sub);
@@ -68,8 +72,21 @@ void compare_rank_counts(const Scene& scene) {
     EXPECT_EQ(mismatches(*a[f], *b[f]), 0) << names[f] << ": 1 vs 2 ranks";
     EXPECT_EQ(mismatches(*a[f], *c[f]), 0) << names[f] << ": 1 vs 4 ranks";
   }
-  std::printf("%s: %ld cycles, %zu cells; 1, 2, 4 ranks bitwise identical in 5 fields\n",
-              scene.name.c_str(), one.cycles, one.rho.size());
+  ASSERT_EQ(one.fractions.size(), scene.materials.size() > 1 ? scene.materials.size() : 0u);
+  long mixed = 0;
+  for (std::size_t q = 0; q < one.fractions.size(); ++q) {
+    EXPECT_EQ(mismatches(one.fractions[q], two.fractions[q]), 0) << "fraction " << q << ": 1 vs 2";
+    EXPECT_EQ(mismatches(one.fractions[q], four.fractions[q]), 0) << "fraction " << q << ": 1 vs 4";
+    for (double x : one.fractions[q]) mixed += (x > 0 && x < 1) ? 1 : 0;
+  }
+  std::printf(
+      "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end; 1, 2, "
+      "4 ranks bitwise identical in %zu fields\n",
+      scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed,
+      5 + one.fractions.size());
+  if (!one.fractions.empty()) {
+    EXPECT_GT(mixed, 0);
+  }
 }
 
 }  // namespace
@@ -94,4 +111,17 @@ TEST(Decomposition, UnsplitSedovIdenticalOn1_2_4Ranks) {
   compare_rank_counts(
       test::load_scene("sedov.yaml", {"mesh.cells=[17,14,13]", "regions.1.radius=0.15",
                                       "time.end=0.05", "numerics.remap=unsplit"}));
+}
+
+// Mixed cells cross the rank boundaries: the material halo (both layouts) must carry them exactly.
+TEST(Decomposition, TriplePointIdenticalOn1_2_4RanksBothLayouts) {
+  for (const char* layout : {"compact", "dense"})
+    compare_rank_counts(test::load_scene(
+        "triple_point.yaml", {"mesh.cells=[28,13,3]", "mesh.hi=[7,3,0.3]", "time.end=1.2",
+                              std::string("numerics.layout=") + layout}));
+}
+
+TEST(Decomposition, SphereAdvectionIdenticalOn1_2_4Ranks) {
+  compare_rank_counts(
+      test::load_scene("sphere_advection.yaml", {"mesh.cells=[13,12,11]", "time.end=1.0"}));
 }
