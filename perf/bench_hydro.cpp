@@ -13,6 +13,7 @@
 
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
+#include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "stream.hpp"
 
@@ -62,49 +63,10 @@ int main(int argc, char** argv) {
         settings.quiet = true;
         Simulation sim(scene, MPI_COMM_WORLD, settings);
         sim.initialize();
-        auto& h = sim.hydro();
-        auto& state = h.state();
-        Real dt_old = 0;
-        double t = 0, wall = 0;
-        // Per-phase wall time, each phase fenced: the cycle of Hydro::step taken apart.
-        const char* phase_names[5] = {"time_step", "lagrange", "remap", "eos_viscosity",
-                                      "health_check"};
-        double phase[5] = {0, 0, 0, 0, 0};
-        auto now = [] { return std::chrono::steady_clock::now(); };
-        auto since = [](std::chrono::steady_clock::time_point a) {
-          return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-        };
-        for (int cyc = 0; cyc < warmup + cycles; ++cyc) {
-          Kokkos::fence();
-          MPI_Barrier(MPI_COMM_WORLD);
-          const bool timed = cyc >= warmup;
-          const auto t0 = now();
-          auto tp = now();
-          const auto ts = h.time_step(dt_old, Real(t), Real(1e9));
-          Kokkos::fence();
-          if (timed) phase[0] += since(tp);
-          tp = now();
-          h.lagrange(ts.dt);
-          Kokkos::fence();
-          if (timed) phase[1] += since(tp);
-          tp = now();
-          h.remap(cyc);
-          Kokkos::fence();
-          if (timed) phase[2] += since(tp);
-          tp = now();
-          h.equation_of_state(state.rho, state.e, state.p, state.c);
-          h.viscosity();
-          Kokkos::fence();
-          if (timed) phase[3] += since(tp);
-          tp = now();
-          h.check();
-          Kokkos::fence();
-          if (timed) phase[4] += since(tp);
-          MPI_Barrier(MPI_COMM_WORLD);
-          if (timed) wall += since(t0);
-          t += ts.dt;
-          dt_old = ts.dt;
-        }
+        const perf::CycleTimes ct = perf::time_cycles(sim.hydro(), warmup, cycles);
+        const double wall = ct.wall;
+        const double* phase = ct.phase;
+        const char* const* phase_names = perf::CycleTimes::names;
         const double cells = double(s) * s * s;
         const double rate = cells * cycles / wall;
         // Bytes a cycle must move at the least: ~20 cell and node fields read or written once

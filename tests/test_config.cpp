@@ -231,9 +231,18 @@ TEST(Deck, MaterialsAndRegions) {
   expect_holds(
       error_of(deck({{21, "    gamma: 1.4\n  - name: gas\n    eos: ideal_gas\n    gamma: 2"}})),
       {"deck.yaml:22:", "key 'materials.1.name'", "defined twice"});
+  // two materials are a multi-material scene: the unsplit remap is refused there, by line
   expect_holds(
-      error_of(deck({{21, "    gamma: 1.4\n  - name: air\n    eos: ideal_gas\n    gamma: 2"}})),
-      {"deck.yaml:19:", "key 'materials'", "one material per scene"});
+      error_of(deck({{16, "  ke_fix: true\n  remap: unsplit"},
+                     {21, "    gamma: 1.4\n  - name: air\n    eos: ideal_gas\n    gamma: 2"}})),
+      {"deck.yaml:17:", "key 'numerics.remap'", "single-material scenes only"});
+  expect_holds(
+      error_of(deck({{16, "  layout: sparse"}})),
+      {"deck.yaml:16:", "key 'numerics.layout'", "'sparse' is not one of: compact, dense"});
+  expect_holds(error_of(deck({{16, "  interface: plic"}})),
+               {"deck.yaml:16:", "key 'numerics.interface'", "youngs, slic, none"});
+  expect_holds(error_of(deck({{16, "  min_fraction: 0.5"}})),
+               {"deck.yaml:16:", "key 'numerics.min_fraction'"});
 }
 
 TEST(Deck, YamlSyntaxError) {

@@ -55,8 +55,34 @@ struct RegionDev {
   }
 };
 
-// Initial material content of the owned cells: regions paint in order, a later region taking
-// the volume fraction of the cell it covers from every material already there.
+// Paints one cell: at each of samples^3 sub-cell points the last region (in deck order) that
+// contains the point decides the material, density and energy there, so regions that do not
+// overlap keep exact volume fractions and a later region covers only what it contains.
+// Accumulates per material the volume fraction, mass and internal energy per cell volume.
+KOKKOS_INLINE_FUNCTION void paint_cell(const Kokkos::View<RegionDev*, MemSpace>& regs, int nreg,
+                                       const double lo[3], const double h[3], int samples,
+                                       double* vol, double* mass, double* ener) {
+  const double w = 1.0 / (double(samples) * samples * samples), inv = 1.0 / samples;
+  for (int k = 0; k < samples; ++k)
+    for (int j = 0; j < samples; ++j)
+      for (int i = 0; i < samples; ++i) {
+        const double x = lo[0] + (i + 0.5) * inv * h[0], y = lo[1] + (j + 0.5) * inv * h[1],
+                     z = lo[2] + (k + 0.5) * inv * h[2];
+        for (int n = nreg - 1; n >= 0; --n) {
+          const RegionDev& reg = regs(n);
+          if (!(reg.all || reg.contains(x, y, z))) continue;
+          double rr, ee;
+          reg.state(lo, h, rr, ee);
+          vol[reg.mat] += w;
+          mass[reg.mat] += w * rr;
+          ener[reg.mat] += w * rr * ee;
+          break;
+        }
+      }
+}
+
+// Initial material content of the owned cells (paint_cell), materials below the smallest
+// fraction handed to the largest one.
 struct PaintSource {
   Kokkos::View<RegionDev*, MemSpace> regs;
   int nreg, nmat, samples;
@@ -72,21 +98,7 @@ struct PaintSource {
     const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
     double vol[mat::kMaxMaterials], mass[mat::kMaxMaterials], ener[mat::kMaxMaterials];
     for (int m = 0; m < nmat; ++m) vol[m] = mass[m] = ener[m] = 0;
-    for (int n = 0; n < nreg; ++n) {
-      const RegionDev& reg = regs(n);
-      const double f = reg.fraction(clo, h, samples);
-      if (f <= 0) continue;
-      for (int m = 0; m < nmat; ++m) {
-        vol[m] *= 1 - f;
-        mass[m] *= 1 - f;
-        ener[m] *= 1 - f;
-      }
-      double rr, ee;
-      reg.state(clo, h, rr, ee);
-      vol[reg.mat] += f;
-      mass[reg.mat] += f * rr;
-      ener[reg.mat] += f * rr * ee;
-    }
+    paint_cell(regs, nreg, clo, h, samples, vol, mass, ener);
     int big = 0;
     for (int m = 1; m < nmat; ++m)
       if (vol[m] > vol[big]) big = m;
@@ -254,18 +266,10 @@ void Simulation::initialize() {
         "init::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
           const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
           const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
-          double rho_c = 0, e_c = 0;
-          for (int n = 0; n < nreg; ++n) {
-            const RegionDev& r = dregs(n);
-            const double f = r.fraction(lo, h, samples);
-            if (f <= 0) continue;
-            double rho_r, e_r;
-            r.state(lo, h, rho_r, e_r);
-            const double m_old = (1 - f) * rho_c;
-            const double m_new = f * rho_r;
-            e_c = (m_old * e_c + m_new * e_r) / (m_old + m_new);
-            rho_c = m_old + m_new;
-          }
+          // one material: every region's material index is 0
+          double vol = 0, mass = 0, ener = 0;
+          paint_cell(dregs, nreg, lo, h, samples, &vol, &mass, &ener);
+          const double rho_c = mass, e_c = ener / mass;
           rho(i, j, k) = Real(rho_c);
           e(i, j, k) = Real(e_c);
         });
