@@ -167,7 +167,10 @@ TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
   for (int q = 0; q < 3; ++q) {
     const double rel = std::abs(b[q] - a[q]) / a[q];
     worst = std::max(worst, rel);
-    EXPECT_LT(rel, 2e-14) << scene.materials[q].name;
+    // The fields do not depend on the thread count (checked bitwise), but the two mass sums
+    // over 4200 cells do: each carries reduction round-off up to ~N eps = 4200 x 1.1e-16 =
+    // 4.7e-13 in the worst case (observed 4e-15 to 5e-14 with 2 and 1 threads).
+    EXPECT_LT(rel, 2e-13) << scene.materials[q].name;
   }
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
   std::printf(
