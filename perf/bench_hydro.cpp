@@ -7,15 +7,13 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
-#include <thread>
 
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
-#include "stream.hpp"
+#include "report.hpp"
 
 using namespace mp;
 
@@ -46,13 +44,8 @@ int main(int argc, char** argv) {
     if (rc == 0) {
       const perf::Stream st = perf::stream_triad(1L << 24, 10);
       std::ostringstream rows, js;
-      js << "{\n  \"benchmark\": \"hydro_single_material\",\n  \"deck\": \"" << deck
-         << "\",\n  \"kokkos_execution_space\": \"" << ExecSpace::name()
-         << "\",\n  \"threads_per_rank\": " << ExecSpace().concurrency()
-         << ",\n  \"ranks\": " << nranks << ",\n  \"real\": \""
-         << (sizeof(Real) == 8 ? "double" : "float")
-         << "\",\n  \"hardware_threads\": " << std::thread::hardware_concurrency()
-         << ",\n  \"stream_triad_GBs\": " << st.triad_gbs << ",\n  \"runs\": [";
+      perf::json_machine(js, "hydro_single_material", st, nranks);
+      js << ",\n  \"deck\": \"" << deck << "\",\n  \"runs\": [";
       for (std::size_t n = 0; n < sizes.size(); ++n) {
         const int s = sizes[n];
         const std::string c = std::to_string(s);
@@ -93,11 +86,7 @@ int main(int argc, char** argv) {
             "| %% lagrange | %% remap | %% eos+q | %% check |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n%s",
             rows.str().c_str());
-        if (!json.empty()) {
-          std::ofstream out(json);
-          out << js.str();
-          std::printf("\nwrote %s\n", json.c_str());
-        }
+        perf::write_json(json, js.str());
       }
     }
   }

@@ -16,15 +16,13 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
-#include <thread>
 
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
-#include "stream.hpp"
+#include "report.hpp"
 
 using namespace mp;
 
@@ -86,13 +84,9 @@ int main(int argc, char** argv) {
     if (rc == 0) {
       const perf::Stream st = perf::stream_triad(1L << 24, 10);
       std::ostringstream rows, js;
-      js << "{\n  \"benchmark\": \"material_layouts\",\n  \"kokkos_execution_space\": \""
-         << ExecSpace::name() << "\",\n  \"threads_per_rank\": " << ExecSpace().concurrency()
-         << ",\n  \"ranks\": " << nranks << ",\n  \"real\": \""
-         << (sizeof(Real) == 8 ? "double" : "float")
-         << "\",\n  \"hardware_threads\": " << std::thread::hardware_concurrency()
-         << ",\n  \"stream_triad_GBs\": " << st.triad_gbs << ",\n  \"cells\": [" << cells[0] << ", "
-         << cells[1] << ", " << cells[2] << "],\n  \"runs\": [";
+      perf::json_machine(js, "material_layouts", st, nranks);
+      js << ",\n  \"cells\": [" << cells[0] << ", " << cells[1] << ", " << cells[2]
+         << "],\n  \"runs\": [";
       bool first = true;
       for (int nmat : materials)
         for (int width : widths) {
@@ -156,11 +150,7 @@ int main(int argc, char** argv) {
             "compact ms/cycle | dense/compact time | dense B/cell | compact B/cell | "
             "dense/compact memory |\n|---|---|---|---|---|---|---|---|---|\n%s",
             rows.str().c_str());
-        if (!json.empty()) {
-          std::ofstream out(json);
-          out << js.str();
-          std::printf("\nwrote %s\n", json.c_str());
-        }
+        perf::write_json(json, js.str());
       }
     }
   }

@@ -94,8 +94,7 @@ Health Hydro::check() const {
                          !misfinite(e(i, j, k)) || !misfinite(p(i, j, k)) ||
                          !misfinite(u(i, j, k)) || !misfinite(v(i, j, k)) || !misfinite(w(i, j, k));
         if (bad) {
-          const long id =
-              g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+          const long id = g.global_cell(i, j, k, nx, ny);
           if (id < acc) acc = id;
         }
       },

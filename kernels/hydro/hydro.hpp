@@ -15,6 +15,23 @@
 
 namespace mp::hydro {
 
+// Volume change of cell (i, j, k) in one step: the volumes swept by its six faces (face fluxes
+// stored in node-extent views, face d at index i sitting at node coordinate i along d).
+KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, const Field3& fz,
+                                            int i, int j, int k) {
+  return fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) + fz(i, j, k + 1) -
+         fz(i, j, k);
+}
+
+// Sum of a node field over the 8 corners of cell (i, j, k), x fastest.
+KOKKOS_INLINE_FUNCTION Real corner_sum(const Field3& f, int i, int j, int k) {
+  Real sum = 0;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) sum += f(i + a, j + b, k + c);
+  return sum;
+}
+
 struct Options {
   int order = 2;  // advection order: 2 van Leer, 1 donor cell
   Real q_linear = 0.2;
@@ -112,7 +129,7 @@ class Hydro {
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
   // Multi-material pieces (multimat.cpp).
-  void mm_equation_of_state();
+  void mm_equation_of_state() const;
   void mm_predictor(Real vol);
   void mm_corrector(Real vol);
   template <class Dev>

@@ -73,7 +73,7 @@ void Hydro::prepare() {
 
 void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& p,
                               const Field3& c) const {
-  if (mm_) return const_cast<Hydro*>(this)->mm_equation_of_state();
+  if (mm_) return mm_equation_of_state();
   const auto eos = eos_;
   Kokkos::parallel_for(
       "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -148,12 +148,12 @@ Health Hydro::lagrange(Real dt) {
 
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
   volume_fluxes(s_.u, s_.v, s_.w, Real(0.5) * dt);
-  if (mm_) mm_predictor(vol);
-  if (!mm_)
+  if (mm_)
+    mm_predictor(vol);
+  else
     Kokkos::parallel_for(
         "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                          fz(i, j, k + 1) - fz(i, j, k);
+          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
           const Real mass = rho(i, j, k) * vol;
           const Real v_half = vol + dv;
           const Real e_half = e(i, j, k) - (p(i, j, k) + q(i, j, k)) * dv / mass;
@@ -196,12 +196,12 @@ Health Hydro::lagrange(Real dt) {
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
   volume_fluxes(ub, vb, wb, dt);
-  if (mm_) mm_corrector(vol);
-  if (!mm_)
+  if (mm_)
+    mm_corrector(vol);
+  else
     Kokkos::parallel_for(
         "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                          fz(i, j, k + 1) - fz(i, j, k);
+          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
           const Real mass = rho(i, j, k) * vol;
           e(i, j, k) -= (ph(i, j, k) + q(i, j, k)) * dv / mass;
           rho(i, j, k) = mass / (vol + dv);
@@ -213,8 +213,7 @@ Health Hydro::lagrange(Real dt) {
   Kokkos::parallel_reduce(
       "lagrange::volume_check", mesh_.cells(Region::Owned),
       KOKKOS_LAMBDA(int i, int j, int k, long& n) {
-        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                        fz(i, j, k + 1) - fz(i, j, k);
+        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
         if (!(vmin + dv > 0)) ++n;
       },
       bad);

@@ -21,6 +21,10 @@ using mat::MatRef;
 
 namespace {
 
+// The whole block, ghosts included.
+std::array<int, 3> all_hi(const Mesh& m) {
+  return {m.extent(Centering::Cell, 0), m.extent(Centering::Cell, 1), m.extent(Centering::Cell, 2)};
+}
 std::array<int, 3> all_lo() {
   return {0, 0, 0};
 }
@@ -198,17 +202,11 @@ struct FaceFluxes {
       for (int m = 0; m < nmat; ++m)
         if (a[m] > 0) m0 = m;
       const bool smooth = mat::pure_of(dev, ui, uj, uk, m0) && mat::pure_of(dev, wi, wj, wk, m0);
-      const int ord = smooth ? order : 1;
-      const Real sigma = mabs(f) / pd;
-      const Real rf = face_value(rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), sigma, ord);
-      const Real mflux = f * rf;
-      const Real sm = mabs(mflux) / (rho(di, dj, dk) * pd);
-      const Real efv = face_value(e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), sm, ord);
+      donor_flux(f, pd, rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), e(ui, uj, uk),
+                 e(di, dj, dk), e(wi, wj, wk), smooth ? order : 1, M[m0], E[m0]);
       V[m0] = f;
-      M[m0] = mflux;
-      E[m0] = mflux * efv;
-      mf(i, j, k) = mflux;
-      ef(i, j, k) = mflux * efv;
+      mf(i, j, k) = M[m0];
+      ef(i, j, k) = E[m0];
     } else {
       // Onion skin: layer L holds the materials with id <= L; its plane is reconstructed from
       // the cumulative fraction, and the material's flux is the difference of two layers.
@@ -263,13 +261,11 @@ struct FaceFluxes {
 
 }  // namespace
 
-void Hydro::mm_equation_of_state() {
+void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
   auto p = s_.p, c = s_.c, rho = s_.rho;
-  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
-                              mesh_.extent(Centering::Cell, 2)};
   mm_->for_cells(
-      "eos::pressure_sound_speed", all_lo(), hi,
+      "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         Real psum = 0, k2 = 0, plast = 0, clast = 0;
         int n = 0;
@@ -299,12 +295,10 @@ void Hydro::mm_predictor(Real vol) {
   const auto mats = mats_;
   auto q = s_.q, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
-                              mesh_.extent(Centering::Cell, 2)};
   mm_->for_cells(
-      "lagrange::predictor", all_lo(), hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                        fz(i, j, k + 1) - fz(i, j, k);
+      "lagrange::predictor", all_lo(), all_hi(mesh_),
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
         const Real v_half = vol + dv;
         Real sum = 0, last = 0;
         int n = 0;
@@ -326,12 +320,10 @@ void Hydro::mm_predictor(Real vol) {
 void Hydro::mm_corrector(Real vol) {
   auto q = s_.q, rho = s_.rho, e = s_.e;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
-                              mesh_.extent(Centering::Cell, 2)};
   mm_->for_cells(
-      "lagrange::corrector", all_lo(), hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        const Real dv = fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) +
-                        fz(i, j, k + 1) - fz(i, j, k);
+      "lagrange::corrector", all_lo(), all_hi(mesh_),
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
         Real rsum = 0, esum = 0, rlast = 0, elast = 0;
         int n = 0;
         for (int s = 0; s < cell.count(); ++s) {
@@ -409,15 +401,10 @@ void Hydro::mm_remap_cells(int d) {
 void Hydro::mm_ke_fix() {
   auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol;
   const int ng = Mesh::ng;
-  const std::array<int, 3> lo{ng, ng, ng};
-  const std::array<int, 3> hi{ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1),
-                              ng + mesh_.owned_cells(2)};
+  const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
   mm_->for_cells(
       "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        Real sum = 0;
-        for (int c = 0; c < 2; ++c)
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a) sum += kel(i + a, j + b, k + c);
+        const Real sum = corner_sum(kel, i, j, k);
         if (!(sum > 0)) return;
         // the same specific energy to every material keeps the cell average consistent
         const Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));

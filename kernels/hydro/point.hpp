@@ -1,6 +1,6 @@
 // Point functions of the staggered hydro scheme: they see a few numbers, never a view or a loop.
 #pragma once
-#include "core/types.hpp"
+#include "core/math.hpp"
 
 namespace mp::hydro {
 
@@ -35,6 +35,19 @@ KOKKOS_INLINE_FUNCTION Real face_value(Real up, Real donor, Real down, Real sigm
   if (a * b <= 0) return donor;
   const Real slope = 2 * a * b / (a + b);  // van Leer's harmonic mean of the one-sided slopes
   return donor + Real(0.5) * (1 - sigma) * slope;
+}
+
+// Mass and internal-energy flux through a face with volume flux f (signed along the axis) out of
+// a donor cell of volume `pre`, from van Leer face values of density (Courant number |f|/pre)
+// and of specific energy (the mass Courant number). up / donor / down ordered along the wind.
+KOKKOS_INLINE_FUNCTION void donor_flux(Real f, Real pre, Real rho_up, Real rho_d, Real rho_dn,
+                                       Real e_up, Real e_d, Real e_dn, int order, Real& mass,
+                                       Real& energy) {
+  const Real sigma = mabs(f) / pre;
+  const Real rf = face_value(rho_up, rho_d, rho_dn, sigma, order);
+  mass = f * rf;
+  const Real sm = mabs(mass) / (rho_d * pre);
+  energy = mass * face_value(e_up, e_d, e_dn, sm, order);
 }
 
 }  // namespace mp::hydro

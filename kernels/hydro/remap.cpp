@@ -75,8 +75,9 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
     lo[d] = fr[0];
     hi[d] = fr[1];
-    if (mm_) mm_remap_faces(d);
-    if (!mm_)
+    if (mm_)
+      mm_remap_faces(d);
+    else
       Kokkos::parallel_for(
           "remap::cell_flux", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
           KOKKOS_LAMBDA(int i, int j, int k) {
@@ -87,14 +88,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
             const int di = i + dn * sx, dj = j + dn * sy, dk = k + dn * sz;
             const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
             const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
-            const Real sigma = mabs(f) / pre(di, dj, dk);
-            const Real rf =
-                face_value(rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk), sigma, ord);
-            const Real m = f * rf;
-            const Real sm = mabs(m) / (rho(di, dj, dk) * pre(di, dj, dk));
-            const Real efv = face_value(e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), sm, ord);
-            mf(i, j, k) = m;
-            ef(i, j, k) = m * efv;
+            donor_flux(f, pre(di, dj, dk), rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk),
+                       e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), ord, mf(i, j, k), ef(i, j, k));
           });
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
     HaloField efh{ef, Centering::Cell, {1, 1, 1}};
@@ -106,10 +101,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // Cells: new mass and energy; one ghost layer is updated too, for the dual-mesh masses.
   // (Multi-material: owned cells, then the material exchange; the scene reader keeps
   // multi-material runs on split sweeps, one axis per step.)
-  if (mm_)
+  if (mm_) {
     for (int d = 0; d < 3; ++d)
       if (axes[d]) mm_remap_cells(d);
-  if (!mm_)
+  } else {
     Kokkos::parallel_for(
         "remap::cell_update", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real m0 = rho(i, j, k) * pre(i, j, k);
@@ -130,6 +125,7 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
           e(i, j, k) = (e(i, j, k) * m0 + de) / m1;
           rho(i, j, k) = m1 / post(i, j, k);
         });
+  }
 
   // Momentum through the dual faces normal to each axis d. The dual face at cell c (between
   // nodes c and c+1) carries the average of the mass fluxes through the two cell faces bounding
@@ -191,15 +187,13 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
         const Real ke1 = Real(0.5) * m1 * (u1 * u1 + v1 * v1 + w1 * w1);
         kel(i, j, k) = ke0 + ke_flux - ke1;
       });
-  if (opt_.ke_fix && mm_) mm_ke_fix();
-  if (opt_.ke_fix && !mm_) {
+  if (opt_.ke_fix && mm_) {
+    mm_ke_fix();
+  } else if (opt_.ke_fix) {
     // Each node hands 1/8 of its loss to each of its 8 cells; owned cells read owned nodes only.
     Kokkos::parallel_for(
         "remap::ke_fix", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          Real sum = 0;
-          for (int c = 0; c < 2; ++c)
-            for (int b = 0; b < 2; ++b)
-              for (int a = 0; a < 2; ++a) sum += kel(i + a, j + b, k + c);
+          const Real sum = corner_sum(kel, i, j, k);
           // Only dissipation is returned: where the limiter made kinetic energy (sum < 0),
           // taking it from near-vacuum cells would drive their energy negative.
           if (sum > 0) e(i, j, k) += Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));

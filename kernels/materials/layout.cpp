@@ -5,14 +5,11 @@
 #include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/reduce.hpp"
+#include "mesh/halo.hpp"
 
 namespace mp::mat {
 
 namespace {
-
-MPI_Datatype mpi_real() {
-  return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
-}
 
 // Content of the ghost slabs of one halo sweep along axis d: cells on a physical boundary copy
 // their mirror (reflective) or the wall cell (outflow) of the same block; cells next to a
@@ -142,7 +139,8 @@ void MaterialState::exchange() {
     n[d] = ng;
     const long cells = long(n[0]) * n[1] * n[2];
     const long count = cells * nmat * 3;
-    Buffer send[2], recv[2];
+    Buffer* send = send_;
+    Buffer* recv = recv_;
     int mode[2] = {0, 0};
     bool any = false;
     for (int s = 0; s < 2; ++s) {
@@ -151,8 +149,10 @@ void MaterialState::exchange() {
         continue;
       }
       any = true;
-      send[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), count);
-      recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), count);
+      if (long(send[s].extent(0)) < count) {  // kept between calls: the largest axis wins
+        send[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), count);
+        recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), count);
+      }
       // pack the ng owned layers next to face s
       const int first = s == 0 ? ng : nl;
       int lo[3] = {0, 0, 0}, hi[3] = {ext[0], ext[1], ext[2]};
@@ -193,53 +193,24 @@ void MaterialState::exchange() {
             });
       }
     }
-    if (any) {
-      Kokkos::fence();
-      typename Buffer::HostMirror hs[2], hr[2];
-      MPI_Request req[4];
-      int nreq = 0;
-      for (int s = 0; s < 2; ++s) {
-        if (mode[s] != 0) continue;
-        hs[s] = Kokkos::create_mirror_view(send[s]);
-        hr[s] = Kokkos::create_mirror_view(recv[s]);
-        Kokkos::deep_copy(hs[s], send[s]);
-        MPI_CHECK(MPI_Irecv(hr[s].data(), int(count), mpi_real(), mesh_.neighbor(d, s),
-                            100 + 10 * d + 1 - s, mesh_.comm(), &req[nreq++]));
-      }
-      for (int s = 0; s < 2; ++s) {
-        if (mode[s] != 0) continue;
-        MPI_CHECK(MPI_Isend(hs[s].data(), int(count), mpi_real(), mesh_.neighbor(d, s),
-                            100 + 10 * d + s, mesh_.comm(), &req[nreq++]));
-      }
-      MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
-      for (int s = 0; s < 2; ++s)
-        if (mode[s] == 0) Kokkos::deep_copy(recv[s], hr[s]);
-    }
-    if (kind_ == LayoutKind::Dense) {
-      HaloSource<DenseDev> src{dense_,
-                               rho_,
-                               e_,
-                               d,
-                               ng,
-                               nl,
-                               nmat,
-                               {ext[0], ext[1], ext[2]},
-                               {mode[0], mode[1]},
-                               {recv[0], recv[1]}};
+    if (any) exchange_buffers(mesh_, d, send, recv, count, 100);
+    auto run = [&](const auto& dev) {
+      HaloSource<std::decay_t<decltype(dev)>> src{dev,
+                                                  rho_,
+                                                  e_,
+                                                  d,
+                                                  ng,
+                                                  nl,
+                                                  nmat,
+                                                  {ext[0], ext[1], ext[2]},
+                                                  {mode[0], mode[1]},
+                                                  {recv[0], recv[1]}};
       assign("matter::halo", src);
-    } else {
-      HaloSource<CompactDev> src{compact_,
-                                 rho_,
-                                 e_,
-                                 d,
-                                 ng,
-                                 nl,
-                                 nmat,
-                                 {ext[0], ext[1], ext[2]},
-                                 {mode[0], mode[1]},
-                                 {recv[0], recv[1]}};
-      assign("matter::halo", src);
-    }
+    };
+    if (kind_ == LayoutKind::Dense)
+      run(dense_);
+    else
+      run(compact_);
   }
 }
 
@@ -248,8 +219,7 @@ std::vector<double> MaterialState::material_masses() const {
   const double vol = g.cell_volume();
   SumN<kMaxMaterials> sum;
   const int ng = Mesh::ng;
-  std::array<int, 3> lo{ng, ng, ng},
-      hi{ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1), ng + mesh_.owned_cells(2)};
+  const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
   if (kind_ == LayoutKind::Dense) {
     const DenseDev d = dense_;
     const int nmat = nmat_;
@@ -302,15 +272,12 @@ Field3 MaterialState::fraction(int m) const {
   const CompactDev d = compact_;
   Kokkos::parallel_for(
       "matter::fraction", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
-        f(i, j, k) = cumulative_fraction(d, i, j, k, m) -
-                     (m > 0 ? cumulative_fraction(d, i, j, k, m - 1) : Real(0));
-        // exact for a pure cell; a mixed cell reads its slot directly
-        if (d.mat(i, j, k) < 0) {
-          Real a = 0;
+        const int id = d.mat(i, j, k);
+        Real a = id == m ? Real(1) : Real(0);
+        if (id < 0)
           for (int q = d.first(i, j, k); q < d.first(i, j, k) + d.nm(i, j, k); ++q)
             if (d.smat(q) == m) a = d.salpha(q);
-          f(i, j, k) = a;
-        }
+        f(i, j, k) = a;
       });
   return f;
 }
@@ -373,8 +340,7 @@ long MaterialState::first_bad(double vals[3]) const {
         KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
           for (int m = 0; m < nmat; ++m)
             if (d.alpha(m, i, j, k) > 0 && bad(d.rho(m, i, j, k), d.e(m, i, j, k))) {
-              const long id =
-                  g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+              const long id = g.global_cell(i, j, k, nx, ny);
               if (id < acc) acc = id;
             }
         },
@@ -391,8 +357,7 @@ long MaterialState::first_bad(double vals[3]) const {
           const int f = d.first(i, j, k);
           for (int q = f; q < f + d.nm(i, j, k); ++q)
             if (bad(d.srho(q), d.se(q))) {
-              const long id =
-                  g.global_index(0, i) + nx * (g.global_index(1, j) + ny * g.global_index(2, k));
+              const long id = g.global_cell(i, j, k, nx, ny);
               if (id < acc) acc = id;
             }
         },

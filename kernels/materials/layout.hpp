@@ -242,6 +242,7 @@ class MaterialState {
   Field3 rho_, e_, p_, ph_;
   DenseDev dense_;
   CompactDev compact_, next_;  // current and rebuild target (swapped after each rebuild)
+  Buffer send_[2], recv_[2];   // material halo messages, per side
   int ex_, ey_, ez_;
 };
 
@@ -304,7 +305,9 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         });
     return;
   }
-  // Compact: count, scan, fill into the second buffer set, swap.
+  // Compact: count, scan, fill into the second buffer set, swap. A changed cell's content is
+  // computed twice (count and fill) instead of staged: the sources are cheap sums over stored
+  // fluxes, and staging would need a per-cell x nmat buffer, the dense layout's memory.
   const CompactDev old = compact_;
   CompactDev nw = next_;
   const int ey = ey_, ez = ez_;
@@ -384,7 +387,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         }
         cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
       });
-  std::swap(compact_, next_);
+  next_ = compact_;  // the old buffers become the next rebuild's target
   compact_ = nw;
 }
 

@@ -318,8 +318,7 @@ void Simulation::initialize() {
     if (mm) {
       const int ng = Mesh::ng;
       mm->for_cells(
-          "init::deposit", {ng, ng, ng},
-          {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)},
+          "init::deposit", {ng, ng, ng}, mesh_->owned_end(),
           KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
             const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
             const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};

@@ -85,6 +85,39 @@ MPI_Datatype mpi_real() {
 
 }  // namespace
 
+double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buffer recv[2],
+                        long count, int tag_base) {
+  Kokkos::fence();
+  // MPI works on host memory; on a host backend the mirrors are the device buffers.
+  typename Buffer::HostMirror hsend[2], hrecv[2];
+  MPI_Request req[4];
+  int nreq = 0;
+  double bytes = 0;
+  for (int s = 0; s < 2; ++s) {
+    if (mesh.physical_boundary(d, s)) continue;
+    hsend[s] = Kokkos::create_mirror_view(send[s]);
+    hrecv[s] = Kokkos::create_mirror_view(recv[s]);
+    Kokkos::deep_copy(hsend[s], send[s]);
+  }
+  for (int s = 0; s < 2; ++s) {
+    if (mesh.physical_boundary(d, s)) continue;
+    // What arrives from side s was sent by that neighbour towards side 1-s: tag by the
+    // sending side so a rank that is its own periodic neighbour pairs messages correctly.
+    MPI_CHECK(MPI_Irecv(hrecv[s].data(), int(count), mpi_real(), mesh.neighbor(d, s),
+                        tag_base + 10 * d + 1 - s, mesh.comm(), &req[nreq++]));
+  }
+  for (int s = 0; s < 2; ++s) {
+    if (mesh.physical_boundary(d, s)) continue;
+    MPI_CHECK(MPI_Isend(hsend[s].data(), int(count), mpi_real(), mesh.neighbor(d, s),
+                        tag_base + 10 * d + s, mesh.comm(), &req[nreq++]));
+    bytes += double(count) * sizeof(Real);
+  }
+  MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
+  for (int s = 0; s < 2; ++s)
+    if (!mesh.physical_boundary(d, s)) Kokkos::deep_copy(recv[s], hrecv[s]);
+  return bytes;
+}
+
 Halo::Halo(const Mesh& mesh) : mesh_(mesh) {}
 
 void Halo::exchange(const std::vector<HaloField>& fields) {
@@ -121,34 +154,9 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
   }
 
   if (any) {
-    Kokkos::fence();
-    // MPI works on host memory; on a host backend the mirrors are the device buffers.
-    typename Buffer::HostMirror hsend[2], hrecv[2];
-    MPI_Request req[4];
-    int nreq = 0;
+    bytes_sent_ += exchange_buffers(mesh_, d, send_, recv_, count, 0);
     for (int s = 0; s < 2; ++s) {
       if (mesh_.physical_boundary(d, s)) continue;
-      hsend[s] = Kokkos::create_mirror_view(send_[s]);
-      hrecv[s] = Kokkos::create_mirror_view(recv_[s]);
-      Kokkos::deep_copy(hsend[s], send_[s]);
-    }
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      // What arrives from side s was sent by that neighbour towards side 1-s: tag by the
-      // sending side so a rank that is its own periodic neighbour pairs messages correctly.
-      MPI_CHECK(MPI_Irecv(hrecv[s].data(), count, mpi_real(), mesh_.neighbor(d, s), 10 * d + 1 - s,
-                          mesh_.comm(), &req[nreq++]));
-    }
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      MPI_CHECK(MPI_Isend(hsend[s].data(), count, mpi_real(), mesh_.neighbor(d, s), 10 * d + s,
-                          mesh_.comm(), &req[nreq++]));
-      bytes_sent_ += double(count) * sizeof(Real);
-    }
-    MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      Kokkos::deep_copy(recv_[s], hrecv[s]);
       recv_range(mesh_, c, d, s, first, last);
       const Slab sl = slab(mesh_, f0, d, first, last);
       for (int f = 0; f < nf; ++f) unpack(fields[f].view, recv_[s], sl, f * per_field);

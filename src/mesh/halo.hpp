@@ -30,6 +30,12 @@ struct HaloField {
   }
 };
 
+// Sends send[s] (count values) to the neighbour rank on side s of axis d and receives recv[s]
+// from it, for each side that is not a physical boundary; tags start at tag_base so that
+// several kinds of exchange cannot pair up wrongly. Returns the bytes sent.
+double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buffer recv[2],
+                        long count, int tag_base);
+
 class Halo {
  public:
   explicit Halo(const Mesh& mesh);

@@ -46,6 +46,10 @@ struct Geometry {
     return lo[d] + Real(offset[d] + i - ng) * dx[d];
   }
   KOKKOS_INLINE_FUNCTION int global_index(int d, int i) const { return offset[d] + i - ng; }
+  // Global linear index (x fastest) of local cell (i, j, k) on a global nx x ny x nz mesh.
+  KOKKOS_INLINE_FUNCTION long global_cell(int i, int j, int k, long nx, long ny) const {
+    return global_index(0, i) + nx * (global_index(1, j) + ny * global_index(2, k));
+  }
   KOKKOS_INLINE_FUNCTION Real cell_volume() const { return dx[0] * dx[1] * dx[2]; }
 };
 
@@ -72,6 +76,8 @@ class Mesh {
     return 1LL * spec_.cells[0] * spec_.cells[1] * spec_.cells[2];
   }
   int owned_cells(int d) const { return nl_[d]; }
+  // One past the last owned cell along each axis (the owned cells start at ng).
+  std::array<int, 3> owned_end() const { return {ng + nl_[0], ng + nl_[1], ng + nl_[2]}; }
   long long owned_cell_count() const { return 1LL * nl_[0] * nl_[1] * nl_[2]; }
   int offset(int d) const { return offset_[d]; }
   Real dx(int d) const { return geo_.dx[d]; }
