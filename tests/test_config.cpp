@@ -243,6 +243,13 @@ TEST(Deck, MaterialsAndRegions) {
                {"deck.yaml:16:", "key 'numerics.interface'", "youngs, slic, none"});
   expect_holds(error_of(deck({{16, "  min_fraction: 0.5"}})),
                {"deck.yaml:16:", "key 'numerics.min_fraction'"});
+  expect_holds(error_of(deck({{16, "  closure: equilibrium"}})),
+               {"deck.yaml:16:", "key 'numerics.closure'",
+                "'equilibrium' is not one of: equal_strain, relaxation"});
+  expect_holds(error_of(deck({{16, "  relaxation_iterations: 0"}})),
+               {"deck.yaml:16:", "key 'numerics.relaxation_iterations'", "out of range"});
+  expect_holds(error_of(deck({{16, "  relaxation_iterations: many"}})),
+               {"deck.yaml:16:", "key 'numerics.relaxation_iterations'"});
 }
 
 TEST(Deck, YamlSyntaxError) {

@@ -121,6 +121,12 @@ TEST(Decomposition, TriplePointIdenticalOn1_2_4RanksBothLayouts) {
                               std::string("numerics.layout=") + layout}));
 }
 
+TEST(Decomposition, TriplePointWithPressureRelaxationIdenticalOn1_2_4Ranks) {
+  compare_rank_counts(
+      test::load_scene("triple_point.yaml", {"mesh.cells=[28,13,3]", "mesh.hi=[7,3,0.3]",
+                                             "time.end=1.2", "numerics.closure=relaxation"}));
+}
+
 TEST(Decomposition, SphereAdvectionIdenticalOn1_2_4Ranks) {
   compare_rank_counts(
       test::load_scene("sphere_advection.yaml", {"mesh.cells=[13,12,11]", "time.end=1.0"}));

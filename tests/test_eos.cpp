@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "eos/eos.hpp"
+#include "hydro/relax.hpp"
 #include "materials/library.hpp"
 
 namespace {
@@ -328,3 +329,69 @@ TEST(Materials, LibraryIsCitedAndComplete) {
 }
 
 }  // namespace
+
+// Pressure relaxation of one mixed cell (kernels/hydro/relax.hpp) across EOS kinds: from very
+// different pressures the materials end at one pressure, with the cell's volume, every
+// material's mass and the cell's internal energy kept, and every state positive and finite.
+TEST(Relaxation, EqualisesPressureAcrossEosKindsConservingVolumeAndEnergy) {
+  using mp::Real;
+  const auto lib = [](const char* name) {
+    return mp::materials::make_eos(*mp::materials::find_material(name));
+  };
+  struct Case {
+    const char* name;
+    Eos a, b;
+    double alpha_a, rho_a, p_a, rho_b, p_b;
+  };
+  // (rho, p) states; energies from inverting p(rho, e) by bisection below.
+  const std::vector<Case> cases = {
+      {"water (stiffened) 1e-2 Mbar | air 1e-6", lib("water_stiffened"), lib("air"), 0.5, 1.0, 1e-2,
+       1e-3, 1e-6},
+      {"air sliver 1e-9 in water at 1e-2", lib("water_stiffened"), lib("air"), 1 - 1e-9, 1.0, 1e-2,
+       1e-3, 1e-6},
+      {"copper at 1.2 rho0 | air", lib("copper"), lib("air"), 0.3, 1.2 * 8.93, -1, 1e-3, 1e-6},
+      {"JWL products | aluminium 6061", mp::eos::make_eos(jwl_fixture()), lib("aluminium_6061"),
+       0.6, jwl_fixture().rho0, 0.3, 2.703, 1e-4},
+      {"polynomial | tungsten compressed", mp::eos::make_eos(polynomial_fixture()), lib("tungsten"),
+       0.5, polynomial_fixture().rho0, 1e-3, 1.1 * 19.224, -1},
+      {"helium | copper in tension", lib("helium"), lib("copper"), 0.2, 1e-3, 1e-4, 0.97 * 8.93,
+       -1},
+  };
+  // e with p(rho, e) = p; p < 0 in a case means "e = 0 at this rho" (cold compression/tension).
+  const auto energy = [](const Eos& eos, double rho, double p) {
+    if (p < 0) return 0.0;
+    double lo = -10, hi = 10;
+    while (eos.pressure(rho, hi) < p) hi *= 2;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (eos.pressure(rho, mid) < p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+  };
+  for (const Case& c : cases) {
+    const Eos eos[2] = {c.a, c.b};
+    const int id[2] = {0, 1};
+    Real vol[2] = {c.alpha_a, 1 - c.alpha_a};
+    const Real mass[2] = {c.rho_a * vol[0], c.rho_b * vol[1]};
+    Real e[2] = {energy(c.a, c.rho_a, c.p_a), energy(c.b, c.rho_b, c.p_b)};
+    const Real p0[2] = {c.a.pressure(c.rho_a, e[0]), c.b.pressure(c.rho_b, e[1])};
+    const Real energy0 = mass[0] * e[0] + mass[1] * e[1];
+    Real p[2];
+    const auto r = mp::hydro::relax_pressures(2, eos, id, vol, mass, e, p, 200, 1e-10);
+    std::printf(
+        "relaxation %-40s p %.3e | %.3e -> %.6e (spread %.1e after %d iterations), alpha %.4e\n",
+        c.name, p0[0], p0[1], p[0], r.spread, r.iterations, vol[0]);
+    EXPECT_LE(r.spread, 1e-10) << c.name;
+    EXPECT_LE(r.iterations, 60) << c.name;
+    EXPECT_NEAR(vol[0] + vol[1], 1.0, 1e-15) << c.name;
+    EXPECT_NEAR(mass[0] * e[0] + mass[1] * e[1], energy0, 1e-13 * std::abs(energy0) + 1e-300)
+        << c.name;
+    for (int s = 0; s < 2; ++s) {
+      EXPECT_GT(vol[s], 0) << c.name;
+      EXPECT_TRUE(std::isfinite(e[s]) && std::isfinite(p[s])) << c.name;
+    }
+    // the common pressure lies between the two starting pressures
+    EXPECT_GE(p[0], std::min(p0[0], p0[1]) - 1e-12) << c.name;
+    EXPECT_LE(p[0], std::max(p0[0], p0[1]) + 1e-12) << c.name;
+  }
+}

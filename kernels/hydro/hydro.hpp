@@ -53,6 +53,12 @@ struct Options {
   mat::LayoutKind layout = mat::LayoutKind::Compact;
   int interface = 0;
   Real min_fraction = Real(1e-14);
+  // Mixed-cell closure of the Lagrangian step: equal strain (false), or equal strain followed
+  // by pressure relaxation (true, kernels/hydro/relax.hpp) with at most relax_iterations
+  // Newton updates per cycle, stopping once the pressures agree to relax_tol (relative).
+  bool relax = false;
+  int relax_iterations = 20;
+  Real relax_tol = Real(1e-10);
 };
 
 struct State {

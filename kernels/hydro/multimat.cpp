@@ -12,6 +12,7 @@
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
+#include "hydro/relax.hpp"
 #include "remap/plic.hpp"
 
 namespace mp::hydro {
@@ -318,29 +319,60 @@ void Hydro::mm_predictor(Real vol) {
 }
 
 void Hydro::mm_corrector(Real vol) {
+  const auto mats = mats_;
+  const bool relax = opt_.relax;
+  const int iters = opt_.relax_iterations;
+  const Real tol = opt_.relax_tol;
   auto q = s_.q, rho = s_.rho, e = s_.e;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   mm_->for_cells(
       "lagrange::corrector", all_lo(), all_hi(mesh_),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-        Real rsum = 0, esum = 0, rlast = 0, elast = 0;
+        const Real vnew = vol + dv;
+        // equal strain: every material takes the cell's relative volume change
+        int slot[kMaxMaterials], id[kMaxMaterials];
+        Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
         int n = 0;
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
           *m.e -= (*m.ph + q(i, j, k)) * dv / mass;
-          *m.rho = mass / (vol + dv);
-          rsum += m.alpha * *m.rho;
-          esum += m.alpha * *m.rho * *m.e;
-          rlast = *m.rho;
-          elast = *m.e;
+          *m.rho = mass / vnew;
+          slot[n] = s;
+          id[n] = m.m;
+          mv[n] = m.alpha * vnew;
+          mm[n] = *m.rho * mv[n];
+          me[n] = *m.e;
           ++n;
         }
-        if (cell.aliases()) return;
-        rho(i, j, k) = n == 1 ? rlast : rsum;
-        e(i, j, k) = n == 1 ? elast : esum / rsum;
+        if (relax && n > 1) {
+          relax_pressures(n, mats.eos, id, mv, mm, me, pm, iters, tol);
+          Real vsum = 0;
+          for (int s = 0; s < n; ++s) vsum += mv[s];
+          for (int s = 0; s < n; ++s) {
+            const MatRef m = cell.get(slot[s]);
+            cell.set_alpha(slot[s], mv[s] / vsum);
+            *m.rho = mm[s] / mv[s];
+            *m.e = me[s];
+          }
+        }
+        if (cell.aliases() || n == 0) return;
+        if (n == 1) {
+          const MatRef m = cell.get(slot[0]);
+          rho(i, j, k) = *m.rho;
+          e(i, j, k) = *m.e;
+          return;
+        }
+        Real rsum = 0, esum = 0;
+        for (int s = 0; s < n; ++s) {
+          const MatRef m = cell.get(slot[s]);
+          rsum += m.alpha * *m.rho;
+          esum += m.alpha * *m.rho * *m.e;
+        }
+        rho(i, j, k) = rsum;
+        e(i, j, k) = esum / rsum;
       });
 }
 

@@ -85,6 +85,8 @@ struct DenseCell {
             &d->p(s, i, j, k),
             &d->ph(s, i, j, k)};
   }
+  // Sets the volume fraction of slot s (pressure relaxation moves volume between materials).
+  KOKKOS_INLINE_FUNCTION void set_alpha(int s, Real a) const { d->alpha(s, i, j, k) = a; }
 };
 
 // A pure compact cell: its one material's state IS the cell state (aliases() == true).
@@ -94,6 +96,7 @@ struct PureCell {
   KOKKOS_INLINE_FUNCTION int count() const { return 1; }
   KOKKOS_INLINE_FUNCTION bool aliases() const { return true; }
   KOKKOS_INLINE_FUNCTION MatRef get(int) const { return {m, Real(1), rho, e, p, ph}; }
+  KOKKOS_INLINE_FUNCTION void set_alpha(int, Real) const {}  // a pure cell's fraction is 1
 };
 
 struct MixedCell {
@@ -105,6 +108,7 @@ struct MixedCell {
     const int q = first + s;
     return {d->smat(q), d->salpha(q), &d->srho(q), &d->se(q), &d->sp(q), &d->sph(q)};
   }
+  KOKKOS_INLINE_FUNCTION void set_alpha(int s, Real a) const { d->salpha(first + s) = a; }
 };
 
 // Reads a cell's content into per-material arrays (zero where absent); returns the number of

@@ -313,7 +313,10 @@ Scene read_scene(const Deck& deck) {
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
     n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples", "layout", "interface",
-                   "min_fraction"});
+                   "min_fraction", "closure", "relaxation_iterations"});
+    s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
+    s.numerics.relaxation_iterations = static_cast<int>(
+        n.get_int("relaxation_iterations", 1, 1000, s.numerics.relaxation_iterations));
     s.numerics.layout = n.get_enum("layout", {"compact", "dense"}, s.numerics.layout);
     s.numerics.interface =
         n.get_enum("interface", {"youngs", "slic", "none"}, s.numerics.interface);

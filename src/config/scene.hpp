@@ -64,6 +64,8 @@ struct NumericsSpec {
   std::string layout = "compact";    // per-material storage: compact | dense
   std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
   double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
+  std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
+  int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
 };
 
 struct OutputSpec {

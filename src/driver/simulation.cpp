@@ -175,6 +175,8 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
                   : scene_.numerics.interface == "slic" ? 1
                                                         : 2;
   opt.min_fraction = Real(scene_.numerics.min_fraction);
+  opt.relax = scene_.numerics.closure == "relaxation";
+  opt.relax_iterations = scene_.numerics.relaxation_iterations;
   std::vector<eos::Eos> eos;
   for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
   hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, eos);
@@ -203,7 +205,13 @@ std::vector<std::string> Simulation::modules() const {
   } else {
     std::ostringstream os;
     os << "materials: " << scene_.materials.size() << " materials, " << scene_.numerics.layout
-       << " layout, equal-strain mixed cells, interface reconstruction "
+       << " layout, "
+       << (scene_.numerics.closure == "relaxation"
+               ? "equal-strain + pressure-relaxation (at most " +
+                     std::to_string(scene_.numerics.relaxation_iterations) +
+                     " iterations/cycle) mixed cells"
+               : std::string("equal-strain mixed cells"))
+       << ", interface reconstruction "
        << (scene_.numerics.interface == "youngs" ? "Youngs PLIC (onion skin)"
                                                  : scene_.numerics.interface)
        << ", min fraction " << scene_.numerics.min_fraction;
