@@ -1,32 +1,51 @@
 // The layout study (DESIGN.md §3.1): the same multi-material scene run in the dense layout (the
 // paper's: every cell holds every material) and the compact layout (pure cells in the cell
 // arrays, mixed cells in a CSR list), sweeping the number of materials and the fraction of
-// mixed cells. Reports time per cycle (and per phase), bytes of per-material state per cell,
-// and the dense/compact ratio, beside the STREAM triad of the same process, as a markdown table
-// and JSON (perf/plot_layouts.py draws the PNG).
+// mixed cells. Reports time per cycle (and per phase), a per-kernel breakdown, bytes of
+// per-material state per cell, and the dense/compact ratio, beside the STREAM triad of the same
+// process, as two markdown tables and JSON (perf/plot_layouts.py draws the PNG).
 //
 // The scene: an nx x ny x nz box of stripes normal to x, each `width` cells wide, materials
 // cycling through the stripes; each stripe boundary sits in the middle of a cell, so exactly
 // 1/width of the cells are mixed (two materials each). Ideal gases of different gamma and
 // density at one pressure, moving at a uniform speed along x: every cycle remaps material
 // across the interfaces.
+//
+// Timing protocol (the machine may be shared and noisy): both layouts of a configuration are
+// set up side by side and run `warmup` untimed cycles each; then `repeats` blocks of `cycles`
+// timed cycles alternate between them (dense first in even blocks, compact first in odd ones),
+// and each layout reports the median over its blocks, with the spread (max / min). The share of
+// the CPUs that other processes took meanwhile is measured from /proc/stat and reported. A
+// separate block afterwards times every Kokkos kernel with a fence on each side (the breakdown;
+// its fences are never part of the plain timing).
 //   bench_layouts [--materials 2,4,8,16] [--widths 100,20,5,2] [--cells 200,16,16]
-//                 [--cycles 10] [--json perf/results/layouts.json]
+//                 [--cycles 4] [--repeats 5] [--warmup 3] [--json perf/results/layouts.json]
 #include <mpi.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
+#include <chrono>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
 #include <sstream>
+#include <thread>
 
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
+#include "kernel_timer.hpp"
 #include "report.hpp"
 
 using namespace mp;
 
 namespace {
+
+constexpr int kPhases = perf::CycleTimes::kPhases;
 
 std::string stripes_deck(int nmat, int width, const std::vector<int>& cells, const char* layout) {
   const double dx = 1.0 / cells[0];
@@ -52,6 +71,155 @@ std::string stripes_deck(int nmat, int width, const std::vector<int>& cells, con
   return d.str();
 }
 
+// CPU time of the whole machine and of this process (Linux /proc), to measure how much of the
+// CPUs other processes took while a configuration was timed.
+struct CpuSample {
+  double busy = 0, self = 0, wall = 0;  // clock ticks, clock ticks, seconds
+};
+
+CpuSample cpu_sample() {
+  CpuSample s;
+  std::ifstream st("/proc/stat");
+  std::string cpu;
+  double v[8] = {};
+  st >> cpu;
+  for (double& x : v) st >> x;
+  s.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];  // user nice system irq softirq steal
+  std::ifstream self("/proc/self/stat");
+  std::string tok;
+  for (int f = 1; f <= 15 && self >> tok; ++f)
+    if (f == 14 || f == 15) s.self += std::stod(tok);  // utime, stime
+  s.wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  return s;
+}
+
+// Share of all CPUs (0..1) that processes other than this one used between two samples.
+double others_share(const CpuSample& a, const CpuSample& b) {
+  const double tick = double(sysconf(_SC_CLK_TCK));
+  const double cpus = double(std::thread::hardware_concurrency());
+  const double others = (b.busy - a.busy) - (b.self - a.self);
+  return std::max(0.0, others / tick / (cpus * (b.wall - a.wall)));
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// Owned cells holding two or more materials: a cell is pure when some material fills it.
+long owned_mixed_cells(const Mesh& mesh, const mat::MaterialState& mm) {
+  const int ng = Mesh::ng;
+  const auto hi = mesh.owned_end();
+  const Policy3 owned({ng, ng, ng}, {hi[0], hi[1], hi[2]});
+  IntField3 pure("pure", mesh.extent(Centering::Cell, 0), mesh.extent(Centering::Cell, 1),
+                 mesh.extent(Centering::Cell, 2));
+  for (int m = 0; m < mm.nmat(); ++m) {
+    const Field3 f = mm.fraction(m);
+    Kokkos::parallel_for(
+        "bench::pure", owned, KOKKOS_LAMBDA(int i, int j, int k) {
+          if (f(i, j, k) == Real(1)) pure(i, j, k) = 1;
+        });
+  }
+  long n = 0;
+  Kokkos::parallel_reduce(
+      "bench::count_mixed", owned,
+      KOKKOS_LAMBDA(int i, int j, int k, long& acc) { acc += pure(i, j, k) ? 0 : 1; }, n);
+  long global = 0;
+  MPI_Allreduce(&n, &global, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  return global;
+}
+
+// One layout of one configuration: the run, its timed blocks and its kernel breakdown.
+struct LayoutRun {
+  std::unique_ptr<Simulation> sim;
+  perf::RunClock clock;
+  std::vector<double> block;                        // seconds per cycle of each timed block
+  std::vector<std::array<double, kPhases>> phase;   // seconds per cycle of each phase, per block
+  long faults = 0;                                  // page faults in the timed blocks
+  std::map<std::string, perf::KernelStat> kernels;  // breakdown block (rank 0)
+  std::map<std::string, perf::KernelStat> regions;  // breakdown block (rank 0)
+  double breakdown_wall = 0;                        // seconds of the breakdown block
+  long allocations = 0;                             // Kokkos allocations in the breakdown block
+  double bytes = 0;                                 // per-material state per owned cell
+
+  void time_block(int cycles) {
+    const perf::CycleTimes ct = perf::run_cycles(sim->hydro(), clock, 0, cycles);
+    block.push_back(ct.wall / cycles);
+    std::array<double, kPhases> p{};
+    for (int q = 0; q < kPhases; ++q) p[q] = ct.phase[q] / cycles;
+    phase.push_back(p);
+    faults += ct.minor_faults;
+  }
+  double seconds() const { return median(block); }
+  double spread() const {
+    return *std::max_element(block.begin(), block.end()) /
+           *std::min_element(block.begin(), block.end());
+  }
+  double phase_median(int q) const {
+    std::vector<double> v;
+    for (const auto& p : phase) v.push_back(p[q]);
+    return median(v);
+  }
+};
+
+// The columns of the breakdown table: kernel labels grouped by what they do. The compact layout
+// runs a kernel as "name[pure]" and "name[mixed]", and rebuilds its slot pool in three passes
+// "name::count", "name::scan", "name::fill" (the dense layout runs "name" once).
+struct Column {
+  const char* title;
+  const char* prefix;  // kernels whose label starts with this (nullptr: computed)
+};
+const Column kColumns[] = {
+    {"eos::pressure_sound_speed", "eos::pressure_sound_speed"},
+    {"lagrange::predictor", "lagrange::predictor"},
+    {"lagrange::corrector", "lagrange::corrector"},
+    {"remap::material_flux", "remap::material_flux"},
+    {"remap::material_update", "remap::material_update"},
+    {"material halo (pack, MPI, ghost update)", nullptr},
+    {"compact pool rebuilds (all ::count/::scan/::fill)", nullptr},
+    {"other kernels", nullptr},
+    {"outside kernels (MPI, host)", nullptr},
+};
+constexpr int kColumns_n = sizeof(kColumns) / sizeof(kColumns[0]);
+
+bool starts_with(const std::string& s, const char* p) {
+  return s.rfind(p, 0) == 0;
+}
+bool rebuild_pass(const std::string& s) {
+  for (const char* p : {"::count", "::scan", "::fill"}) {
+    const std::string q(p);
+    if (s.size() > q.size() && s.compare(s.size() - q.size(), q.size(), q) == 0) return true;
+  }
+  return false;
+}
+
+// Seconds per cycle of each breakdown column.
+std::array<double, kColumns_n> columns(const LayoutRun& r, int cycles) {
+  std::array<double, kColumns_n> c{};
+  double all = 0, named = 0;
+  for (const auto& [name, st] : r.kernels) {
+    all += st.seconds;
+    for (int q = 0; q < kColumns_n; ++q)
+      if (kColumns[q].prefix && starts_with(name, kColumns[q].prefix)) {
+        c[q] += st.seconds;
+        named += st.seconds;
+      }
+    if (rebuild_pass(name)) c[6] += st.seconds;
+  }
+  const auto halo = r.regions.find("matter::exchange");
+  c[5] = halo == r.regions.end() ? 0.0 : halo->second.seconds;
+  double in_halo = 0;  // kernels inside the material halo region
+  for (const auto& [name, st] : r.kernels)
+    if (starts_with(name, "matter::pack") || starts_with(name, "matter::halo"))
+      in_halo += st.seconds;
+  c[7] = all - named - in_halo;
+  c[8] = r.breakdown_wall - all - (c[5] - in_halo);
+  for (double& x : c) x /= cycles;
+  return c;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -62,94 +230,194 @@ int main(int argc, char** argv) {
   {
     CLI::App app{"minipagosa dense vs compact material layout benchmark"};
     std::vector<int> materials{2, 4, 8, 16}, widths{100, 20, 5, 2}, cells{200, 16, 16};
-    int cycles = 10, warmup = 2;
-    std::string json;
+    int cycles = 4, repeats = 5, warmup = 3;
+    bool no_breakdown = false;
+    std::string json, note;
     app.add_option("--materials", materials, "material counts")->delimiter(',');
     app.add_option("--widths", widths, "stripe widths in cells (mixed fraction 1/width)")
         ->delimiter(',');
     app.add_option("--cells", cells, "mesh cells nx,ny,nz (nx a multiple of every width)")
         ->delimiter(',')
         ->expected(3);
-    app.add_option("--cycles", cycles, "timed cycles per run");
-    app.add_option("--warmup", warmup, "untimed cycles first");
+    app.add_option("--cycles", cycles, "timed cycles per block (and in the breakdown block)");
+    app.add_option("--repeats", repeats, "timed blocks per layout (median reported)");
+    app.add_option("--warmup", warmup, "untimed cycles per layout first");
+    app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");
     app.add_option("--json", json, "write results as JSON here");
+    app.add_option("--note", note, "a line about the run conditions, printed and kept in the JSON");
     try {
       app.parse(argc, argv);
+      if (cycles < 1 || repeats < 1 || warmup < 0) throw CLI::ValidationError("counts", "< 1");
     } catch (const CLI::ParseError& e) {
       rc = app.exit(e);
     }
+    const bool breakdown = !no_breakdown;
     int rank = 0, nranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     if (rc == 0) {
       const perf::Stream st = perf::stream_triad(1L << 24, 10);
-      std::ostringstream rows, js;
+      std::ostringstream rows, krows, js;
       perf::json_machine(js, "material_layouts", st, nranks);
       js << ",\n  \"cells\": [" << cells[0] << ", " << cells[1] << ", " << cells[2]
-         << "],\n  \"runs\": [";
+         << "],\n  \"protocol\": {\"warmup_cycles\": " << warmup
+         << ", \"cycles_per_block\": " << cycles << ", \"blocks\": " << repeats
+         << ", \"statistic\": \"median over blocks\", \"order\": \"dense and compact alternate "
+            "block by block\", \"breakdown\": \""
+         << (breakdown ? "separate block, Kokkos::fence before and after every kernel" : "off")
+         << "\"},\n  \"note\": \"" << note << "\",\n  \"runs\": [";
       bool first = true;
+      const char* layouts[2] = {"dense", "compact"};
       for (int nmat : materials)
         for (int width : widths) {
-          double sec[2] = {0, 0}, bytes[2] = {0, 0}, mixed_frac = 0;
-          double phase[2][perf::CycleTimes::kPhases] = {};
-          const char* layouts[2] = {"dense", "compact"};
+          LayoutRun run[2];
           for (int l = 0; l < 2; ++l) {
             const Scene scene = read_scene(
                 Deck::parse(stripes_deck(nmat, width, cells, layouts[l]), "layouts.yaml"));
             RunSettings settings;
             settings.quiet = true;
-            Simulation sim(scene, MPI_COMM_WORLD, settings);
-            sim.initialize();
-            const perf::CycleTimes ct = perf::time_cycles(sim.hydro(), warmup, cycles);
-            sec[l] = ct.wall / cycles;
-            for (int p = 0; p < perf::CycleTimes::kPhases; ++p) phase[l][p] = ct.phase[p] / cycles;
-            const mat::MaterialState* mm = sim.hydro().materials();
-            const Mesh& mesh = sim.mesh();
-            double local[2] = {mm->bytes(), double(mm->mixed_cells())}, global[2];
-            MPI_Allreduce(local, global, 2, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
-            // per owned cell (the blocks' ghost layers included in the bytes)
-            bytes[l] = global[0] / double(mesh.global_cell_count());
-            if (l == 1) {
-              // mixed cells of the owned region: count on the compact list less the ghosts is
-              // not separated; report the design fraction 1/width beside the measured one
-              mixed_frac = global[1] / double(mesh.global_cell_count());
-            }
+            run[l].sim = std::make_unique<Simulation>(scene, MPI_COMM_WORLD, settings);
+            run[l].sim->initialize();
+            perf::run_cycles(run[l].sim->hydro(), run[l].clock, warmup, 0);
           }
-          const double ratio = sec[0] / sec[1];
-          rows << "| " << nmat << " | " << 100.0 / width << " | " << 100 * mixed_frac << " | "
-               << sec[0] * 1e3 << " | " << sec[1] * 1e3 << " | " << ratio << " | " << bytes[0]
-               << " | " << bytes[1] << " | " << bytes[0] / bytes[1] << " |\n";
+          const CpuSample c0 = cpu_sample();
+          for (int b = 0; b < repeats; ++b)
+            for (int o = 0; o < 2; ++o) run[b % 2 ? 1 - o : o].time_block(cycles);
+          const CpuSample c1 = cpu_sample();
+          double others = others_share(c0, c1);
+          MPI_Allreduce(MPI_IN_PLACE, &others, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+          if (breakdown)
+            for (LayoutRun& r : run) {
+              Kokkos::fence();
+              MPI_Barrier(MPI_COMM_WORLD);
+              const auto t0 = std::chrono::steady_clock::now();
+              perf::KernelTimer kt;
+              perf::run_cycles(r.sim->hydro(), r.clock, 0, cycles);
+              r.breakdown_wall =
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+              r.kernels = kt.kernels();
+              r.regions = kt.regions();
+              r.allocations = kt.allocations();
+            }
+          long mixed = 0;
+          for (LayoutRun& r : run) {
+            const mat::MaterialState* mm = r.sim->hydro().materials();
+            const Mesh& mesh = r.sim->mesh();
+            double b = mm->bytes();
+            MPI_Allreduce(MPI_IN_PLACE, &b, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+            // per owned cell (the blocks' ghost layers included in the bytes)
+            r.bytes = b / double(mesh.global_cell_count());
+            mixed = owned_mixed_cells(mesh, *mm);
+          }
+          const double ncell = double(run[1].sim->mesh().global_cell_count());
+          const double mixed_frac = double(mixed) / ncell;
+          const double ratio = run[0].seconds() / run[1].seconds();
+          char line[512];
+          std::snprintf(line, sizeof line,
+                        "| %d | %g | %.2f | %.2f | %.2f | %.2f | %.2f, %.2f | %.0f | %.1f | %.1f "
+                        "| %.0f |\n",
+                        nmat, 100.0 / width, 100 * mixed_frac, run[0].seconds() * 1e3,
+                        run[1].seconds() * 1e3, ratio, run[0].spread(), run[1].spread(),
+                        run[0].bytes, run[1].bytes, run[0].bytes / run[1].bytes, 100 * others);
+          rows << line;
           js << (first ? "" : ",") << "\n    {\"materials\": " << nmat
              << ", \"stripe_width\": " << width << ", \"mixed_fraction_design\": " << 1.0 / width
-             << ", \"mixed_fraction_measured_with_ghosts\": " << mixed_frac
-             << ", \"dense_seconds_per_cycle\": " << sec[0]
-             << ", \"compact_seconds_per_cycle\": " << sec[1]
+             << ", \"mixed_fraction_measured\": " << mixed_frac
+             << ", \"dense_seconds_per_cycle\": " << run[0].seconds()
+             << ", \"compact_seconds_per_cycle\": " << run[1].seconds()
              << ", \"dense_over_compact_time\": " << ratio
-             << ", \"dense_bytes_per_cell\": " << bytes[0]
-             << ", \"compact_bytes_per_cell\": " << bytes[1] << ", \"phases\": {";
-          for (int p = 0; p < perf::CycleTimes::kPhases; ++p)
-            js << (p ? ", " : "") << "\"" << perf::CycleTimes::names[p]
-               << "\": {\"dense\": " << phase[0][p] << ", \"compact\": " << phase[1][p] << "}";
-          js << "}}";
+             << ", \"dense_bytes_per_cell\": " << run[0].bytes
+             << ", \"compact_bytes_per_cell\": " << run[1].bytes
+             << ", \"others_cpu_share\": " << others;
+          for (int l = 0; l < 2; ++l) {
+            const LayoutRun& r = run[l];
+            js << ",\n     \"" << layouts[l] << "\": {\"blocks_seconds_per_cycle\": [";
+            for (std::size_t b = 0; b < r.block.size(); ++b) js << (b ? ", " : "") << r.block[b];
+            js << "], \"page_faults_per_timed_cycle\": "
+               << double(r.faults) / (double(repeats) * cycles) << ", \"phases_median\": {";
+            for (int q = 0; q < kPhases; ++q)
+              js << (q ? ", " : "") << "\"" << perf::CycleTimes::names[q]
+                 << "\": " << r.phase_median(q);
+            js << "}";
+            if (breakdown) {
+              js << ",\n      \"breakdown\": {\"cycles\": " << cycles
+                 << ", \"seconds_per_cycle_fenced\": " << r.breakdown_wall / cycles
+                 << ", \"kokkos_allocations\": " << r.allocations << ", \"kernels\": {";
+              bool fk = true;
+              for (const auto& [name, ks] : r.kernels) {
+                js << (fk ? "" : ", ") << "\n        \"" << name
+                   << "\": {\"seconds_per_cycle\": " << ks.seconds / cycles
+                   << ", \"calls_per_cycle\": " << double(ks.calls) / cycles << "}";
+                fk = false;
+              }
+              js << "},\n       \"regions\": {";
+              fk = true;
+              for (const auto& [name, ks] : r.regions) {
+                js << (fk ? "" : ", ") << "\"" << name
+                   << "\": {\"seconds_per_cycle\": " << ks.seconds / cycles
+                   << ", \"calls_per_cycle\": " << double(ks.calls) / cycles << "}";
+                fk = false;
+              }
+              js << "}}";
+            }
+            js << "}";
+          }
+          js << "}";
           first = false;
+          if (breakdown) {
+            const auto cd = columns(run[0], cycles), cc = columns(run[1], cycles);
+            krows << "| " << nmat << " | " << 100.0 / width << " |";
+            for (int q = 0; q < kColumns_n; ++q) {
+              if (q == 6)  // the dense layout has no pool to rebuild
+                std::snprintf(line, sizeof line, " - / %.2f |", cc[q] * 1e3);
+              else
+                std::snprintf(line, sizeof line, " %.2f / %.2f |", cd[q] * 1e3, cc[q] * 1e3);
+              krows << line;
+            }
+            std::snprintf(line, sizeof line, " %.1f / %.1f | %ld / %ld |\n",
+                          run[0].breakdown_wall / cycles * 1e3,
+                          run[1].breakdown_wall / cycles * 1e3, run[0].allocations,
+                          run[1].allocations);
+            krows << line;
+          }
           if (rank == 0) {
-            std::fprintf(stderr, "  materials %d, mixed %.0f%%: dense %.2f ms, compact %.2f ms\n",
-                         nmat, 100.0 / width, sec[0] * 1e3, sec[1] * 1e3);
+            std::fprintf(stderr,
+                         "  materials %d, mixed %g%%: dense %.2f ms, compact %.2f ms (others "
+                         "used %.0f%% of the CPUs)\n",
+                         nmat, 100.0 / width, run[0].seconds() * 1e3, run[1].seconds() * 1e3,
+                         100 * others);
           }
         }
       js << "\n  ]\n}\n";
       if (rank == 0) {
         std::printf(
             "STREAM triad (same process): %.2f GB/s; %s, %d threads/rank, %d ranks; "
-            "mesh %dx%dx%d, %d timed cycles\n\n",
+            "mesh %dx%dx%d; %d warm-up cycles, then %d blocks of %d cycles per layout, dense and "
+            "compact alternating; median over blocks\n",
             st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks, cells[0], cells[1],
-            cells[2], cycles);
+            cells[2], warmup, repeats, cycles);
+        if (!note.empty()) std::printf("%s\n", note.c_str());
         std::printf(
-            "| materials | mixed %% (design) | mixed %% (measured, ghosts incl.) | dense ms/cycle "
-            "| "
-            "compact ms/cycle | dense/compact time | dense B/cell | compact B/cell | "
-            "dense/compact memory |\n|---|---|---|---|---|---|---|---|---|\n%s",
+            "\n| materials | mixed %% (design) | mixed %% (owned cells) | dense ms/cycle "
+            "| compact ms/cycle | dense/compact time | max/min over blocks (dense, compact) "
+            "| dense B/cell | compact B/cell | dense/compact memory | CPU taken by others %% "
+            "|\n|---|---|---|---|---|---|---|---|---|---|---|\n%s",
             rows.str().c_str());
+        if (breakdown) {
+          std::printf(
+              "\nPer-kernel breakdown, ms/cycle, dense / compact: one separate block of %d "
+              "cycles per layout with Kokkos::fence() before and after every kernel (Kokkos "
+              "tools callbacks; rank 0). The halo column is the whole MaterialState::exchange "
+              "(pack, MPI, ghost update with its pool rebuilds); the columns but the rebuild "
+              "one add up to the fenced cycle; the rebuild column (part of the update and halo "
+              "columns) counts every compact ::count/::scan/::fill pass.\n\n"
+              "| materials | mixed %% |",
+              cycles);
+          for (const Column& c : kColumns) std::printf(" %s |", c.title);
+          std::printf(" cycle, fenced | Kokkos allocations |\n|---|---|");
+          for (int q = 0; q < kColumns_n + 2; ++q) std::printf("---|");
+          std::printf("\n%s", krows.str().c_str());
+        }
         perf::write_json(json, js.str());
       }
     }

@@ -2,6 +2,7 @@
 // ranks, bracketed by barriers), shared by the benchmarks.
 #pragma once
 #include <mpi.h>
+#include <sys/resource.h>
 
 #include <chrono>
 
@@ -16,23 +17,40 @@ struct CycleTimes {
   double phase[kPhases] = {0, 0, 0, 0, 0};  // seconds summed over the timed cycles
   double wall = 0;                          // seconds of the timed cycles
   int cycles = 0;                           // timed cycles
+  long minor_faults = 0;  // page faults of this process during the timed cycles (first touches)
 };
 
-// Runs `warmup` untimed then `cycles` timed cycles of the hydro from its current state.
-inline CycleTimes time_cycles(hydro::Hydro& h, int warmup, int cycles) {
+// Where a run stands between calls of run_cycles: the previous step, the time, the cycle (its
+// parity sets the sweep order), so a run can be timed in several blocks.
+struct RunClock {
+  Real dt_old = 0;
+  double t = 0;
+  long cycle = 0;
+};
+
+inline long minor_faults() {
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  return ru.ru_minflt;
+}
+
+// Runs `warmup` untimed then `cycles` timed cycles of the hydro from where `clock` stands.
+inline CycleTimes run_cycles(hydro::Hydro& h, RunClock& clock, int warmup, int cycles) {
   CycleTimes ct;
   ct.cycles = cycles;
   auto& state = h.state();
-  Real dt_old = 0;
-  double t = 0;
+  Real& dt_old = clock.dt_old;
+  double& t = clock.t;
   auto now = [] { return std::chrono::steady_clock::now(); };
   auto since = [](std::chrono::steady_clock::time_point a) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
   };
-  for (int cyc = 0; cyc < warmup + cycles; ++cyc) {
+  long faults = 0;
+  for (int cyc = 0; cyc < warmup + cycles; ++cyc, ++clock.cycle) {
     Kokkos::fence();
     MPI_Barrier(MPI_COMM_WORLD);
     const bool timed = cyc >= warmup;
+    if (cyc == warmup) faults = minor_faults();
     const auto t0 = now();
     auto tp = now();
     const auto ts = h.time_step(dt_old, Real(t), Real(1e9));
@@ -43,7 +61,7 @@ inline CycleTimes time_cycles(hydro::Hydro& h, int warmup, int cycles) {
     Kokkos::fence();
     if (timed) ct.phase[1] += since(tp);
     tp = now();
-    h.remap(cyc);
+    h.remap(clock.cycle);
     Kokkos::fence();
     if (timed) ct.phase[2] += since(tp);
     tp = now();
@@ -60,7 +78,14 @@ inline CycleTimes time_cycles(hydro::Hydro& h, int warmup, int cycles) {
     t += ts.dt;
     dt_old = ts.dt;
   }
+  if (cycles > 0) ct.minor_faults = minor_faults() - faults;
   return ct;
+}
+
+// Runs `warmup` untimed then `cycles` timed cycles of the hydro from its current state.
+inline CycleTimes time_cycles(hydro::Hydro& h, int warmup, int cycles) {
+  RunClock clock;
+  return run_cycles(h, clock, warmup, cycles);
 }
 
 }  // namespace mp::perf

@@ -11,52 +11,65 @@ namespace mp::mat {
 
 namespace {
 
-// Content of the ghost slabs of one halo sweep along axis d: cells on a physical boundary copy
-// their mirror (reflective) or the wall cell (outflow) of the same block; cells next to a
-// neighbour rank read the received buffer.
+// The material halo fills the ghosts axis by axis (x, then y, then z), so that edge and corner
+// ghosts come through the face neighbours. HaloSource<Dev> is the content of a cell after the
+// first `done` sweeps, computed from the received messages without storing anything: a cell in
+// a ghost slab of sweep d took its content from that sweep's message (neighbour rank) or from
+// its mirror / wall cell (physical boundary) as that cell stood after sweep d-1; every other cell
+// kept its content. Walking back through the sweeps gives each ghost exactly the content that a
+// pool rebuild after every sweep would have stored, so one rebuild per exchange suffices.
 template <class Dev>
 struct HaloSource {
   Dev dev;
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
-  int d, ng, nl, nmat;
-  int ext[3];
-  int mode[2];  // per side: 0 neighbour rank, 1 reflective, 2 outflow
-  Buffer recv[2];
+  int ng, nmat, done;
+  int ext[3], nl[3];
+  int mode[3][2];     // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow
+  Buffer recv[3][2];  // per sweep and side: the message received (ng layers, nmat x 3 per cell)
 
-  KOKKOS_INLINE_FUNCTION int side_of(int i, int j, int k) const {
-    const int x = d == 0 ? i : d == 1 ? j : k;
+  // 0: low ghost slab of axis d, 1: high ghost slab, -1: owned along d.
+  KOKKOS_INLINE_FUNCTION int side_of(int d, int x) const {
     if (x < ng) return 0;
-    if (x >= ng + nl) return 1;
+    if (x >= ng + nl[d]) return 1;
     return -1;
   }
-  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const { return side_of(i, j, k) >= 0; }
+  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const {
+    const int idx[3] = {i, j, k};
+    for (int d = 0; d < done; ++d)
+      if (side_of(d, idx[d]) >= 0) return true;
+    return false;
+  }
   KOKKOS_INLINE_FUNCTION int read(int i, int j, int k, Real* a, Real* r, Real* en) const;
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
-    const int s = side_of(i, j, k);
     int idx[3] = {i, j, k};
-    const int x = idx[d];
-    if (mode[s] == 0) {
-      // slab cell index with the axis d running over the ng ghost layers
-      int loc[3] = {i, j, k}, n[3] = {ext[0], ext[1], ext[2]};
-      loc[d] = s == 0 ? x : x - (ng + nl);
-      n[d] = ng;
-      const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
-      const Buffer& b = recv[s];
-      int cnt = 0;
-      for (int m = 0; m < nmat; ++m) {
-        const long o = (cell * nmat + m) * 3;
-        a[m] = b(o);
-        r[m] = b(o + 1);
-        en[m] = b(o + 2);
-        cnt += a[m] > 0 ? 1 : 0;
+    for (int d = done - 1; d >= 0; --d) {
+      const int x = idx[d];
+      const int s = side_of(d, x);
+      if (s < 0) continue;  // sweep d left this cell alone
+      if (mode[d][s] == 0) {
+        // slab cell index with the axis d running over the ng ghost layers
+        int loc[3] = {idx[0], idx[1], idx[2]}, n[3] = {ext[0], ext[1], ext[2]};
+        loc[d] = s == 0 ? x : x - (ng + nl[d]);
+        n[d] = ng;
+        const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
+        const Buffer& b = recv[d][s];
+        int cnt = 0;
+        for (int m = 0; m < nmat; ++m) {
+          const long o = (cell * nmat + m) * 3;
+          a[m] = b(o);
+          r[m] = b(o + 1);
+          en[m] = b(o + 2);
+          cnt += a[m] > 0 ? 1 : 0;
+        }
+        return cnt;
       }
-      return cnt;
+      // a boundary ghost copied the content its source cell had after sweep d-1
+      if (mode[d][s] == 1)
+        idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;  // mirror across the face
+      else
+        idx[d] = s == 0 ? ng : ng + nl[d] - 1;  // the wall cell
     }
-    if (mode[s] == 1)
-      idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl) - 1 - x;  // mirror across the face
-    else
-      idx[d] = s == 0 ? ng : ng + nl - 1;  // the wall cell
-    return read(idx[0], idx[1], idx[2], a, r, en);
+    return read(idx[0], idx[1], idx[2], a, r, en);  // as stored before the exchange
   }
 };
 
@@ -130,88 +143,83 @@ void MaterialState::resize_pool(CompactDev& c, int slots) const {
 }
 
 void MaterialState::exchange() {
+  Kokkos::Profiling::pushRegion("matter::exchange");  // named for profiling tools
   const int ng = Mesh::ng;
   const int nmat = nmat_;
   const int ext[3] = {ex_, ey_, ez_};
+  // Message sizes per sweep; the receive buffers hold all three sweeps' messages (the final
+  // update reads them all), the send buffers one at a time. Kept between calls.
+  long count[3], offset[3], total = 0, largest = 0;
   for (int d = 0; d < 3; ++d) {
-    const int nl = mesh_.owned_cells(d);
     int n[3] = {ext[0], ext[1], ext[2]};
     n[d] = ng;
-    const long cells = long(n[0]) * n[1] * n[2];
-    const long count = cells * nmat * 3;
-    Buffer* send = send_;
-    Buffer* recv = recv_;
-    int mode[2] = {0, 0};
-    bool any = false;
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) {
-        mode[s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
-        continue;
-      }
-      any = true;
-      if (long(send[s].extent(0)) < count) {  // kept between calls: the largest axis wins
-        send[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), count);
-        recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), count);
-      }
-      // pack the ng owned layers next to face s
-      const int first = s == 0 ? ng : nl;
-      int lo[3] = {0, 0, 0}, hi[3] = {ext[0], ext[1], ext[2]};
-      lo[d] = first;
-      hi[d] = first + ng;
-      auto buf = send[s];
-      const int n0 = n[0], n1 = n[1];
-      const int dd = d;
-      auto pack = [=] KOKKOS_FUNCTION(int i, int j, int k, const Real* a, const Real* r,
-                                      const Real* en) {
-        int loc[3] = {i, j, k};
-        loc[dd] -= first;
-        const long cell = loc[0] + long(n0) * (loc[1] + long(n1) * loc[2]);
-        for (int m = 0; m < nmat; ++m) {
-          const long o = (cell * nmat + m) * 3;
-          buf(o) = a[m];
-          buf(o + 1) = r[m];
-          buf(o + 2) = en[m];
-        }
-      };
-      const Policy3 slab({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
-      if (kind_ == LayoutKind::Dense) {
-        const DenseDev dv = dense_;
-        Kokkos::parallel_for(
-            "matter::pack", slab, KOKKOS_LAMBDA(int i, int j, int k) {
-              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              read_cell(dv, i, j, k, a, r, en);
-              pack(i, j, k, a, r, en);
-            });
-      } else {
-        const CompactDev cv = compact_;
-        auto crho = rho_, ce = e_;
-        Kokkos::parallel_for(
-            "matter::pack", slab, KOKKOS_LAMBDA(int i, int j, int k) {
-              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              read_cell(cv, crho, ce, i, j, k, a, r, en);
-              pack(i, j, k, a, r, en);
-            });
-      }
-    }
-    if (any) exchange_buffers(mesh_, d, send, recv, count, 100);
-    auto run = [&](const auto& dev) {
-      HaloSource<std::decay_t<decltype(dev)>> src{dev,
-                                                  rho_,
-                                                  e_,
-                                                  d,
-                                                  ng,
-                                                  nl,
-                                                  nmat,
-                                                  {ext[0], ext[1], ext[2]},
-                                                  {mode[0], mode[1]},
-                                                  {recv[0], recv[1]}};
-      assign("matter::halo", src);
-    };
-    if (kind_ == LayoutKind::Dense)
-      run(dense_);
-    else
-      run(compact_);
+    count[d] = long(n[0]) * n[1] * n[2] * nmat * 3;
+    offset[d] = total;
+    total += count[d];
+    largest = std::max(largest, count[d]);
   }
+  for (int s = 0; s < 2; ++s) {
+    bool neighbour = false;
+    for (int d = 0; d < 3; ++d) neighbour = neighbour || !mesh_.physical_boundary(d, s);
+    if (!neighbour) continue;
+    if (long(send_[s].extent(0)) < largest)
+      send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), largest);
+    if (long(recv_[s].extent(0)) < total)
+      recv_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), total);
+  }
+  auto run = [&](const auto& dev) {
+    using Dev = std::decay_t<decltype(dev)>;
+    HaloSource<Dev> src{dev, rho_, e_, ng, nmat, 0, {ext[0], ext[1], ext[2]}, {}, {}, {}};
+    for (int d = 0; d < 3; ++d) src.nl[d] = mesh_.owned_cells(d);
+    for (int d = 0; d < 3; ++d) {
+      const int nl = src.nl[d];
+      bool any = false;
+      for (int s = 0; s < 2; ++s) {
+        if (mesh_.physical_boundary(d, s)) {
+          src.mode[d][s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
+          continue;
+        }
+        any = true;
+        src.mode[d][s] = 0;
+        src.recv[d][s] = Kokkos::subview(recv_[s], std::make_pair(offset[d], offset[d] + count[d]));
+        // pack the ng owned layers next to face s, as they stand after the sweeps before d
+        const int first = s == 0 ? ng : nl;
+        int lo[3] = {0, 0, 0}, hi[3] = {ext[0], ext[1], ext[2]};
+        lo[d] = first;
+        hi[d] = first + ng;
+        auto buf = send_[s];
+        const int n0 = d == 0 ? ng : ext[0], n1 = d == 1 ? ng : ext[1];  // slab extents
+        const HaloSource<Dev> before = src;                              // done == d
+        Kokkos::parallel_for(
+            "matter::pack", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+            KOKKOS_LAMBDA(int i, int j, int k) {
+              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+              before.content(i, j, k, a, r, en);
+              int loc[3] = {i, j, k};
+              loc[d] -= first;
+              const long cell = loc[0] + long(n0) * (loc[1] + long(n1) * loc[2]);
+              for (int m = 0; m < nmat; ++m) {
+                const long o = (cell * nmat + m) * 3;
+                buf(o) = a[m];
+                buf(o + 1) = r[m];
+                buf(o + 2) = en[m];
+              }
+            });
+      }
+      if (any) {
+        const Buffer recv[2] = {src.recv[d][0], src.recv[d][1]};
+        exchange_buffers(mesh_, d, send_, recv, count[d], 100);
+      }
+      src.done = d + 1;
+    }
+    // one update of every ghost cell (one pool rebuild in the compact layout)
+    assign("matter::halo", src);
+  };
+  if (kind_ == LayoutKind::Dense)
+    run(dense_);
+  else
+    run(compact_);
+  Kokkos::Profiling::popRegion();
 }
 
 std::vector<double> MaterialState::material_masses() const {
