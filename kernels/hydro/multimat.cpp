@@ -98,6 +98,8 @@ KOKKOS_INLINE_FUNCTION int read_donor(const mat::CompactDev& d, const Field3& rh
 // halo exchange that follows replaces the ghosts).
 template <class Dev>
 struct RemapSource {
+  // content(i, j, k) reads cell (i, j, k) and the fluxes through its faces only
+  static constexpr bool own_cell_only = true;
   Dev dev;
   Field3 rho, e, pre, post, vf, mf, ef;
   int d, nmat;

@@ -20,6 +20,7 @@
 // both layouts produce the same bits.
 #pragma once
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/types.hpp"
@@ -288,6 +289,18 @@ void MaterialState::for_cells(const std::string& name, const std::array<int, 3>&
       });
 }
 
+// A content source whose content(i, j, k) reads no cell state but cell (i, j, k)'s own (the
+// remap update: the cell plus the stored face fluxes) declares
+//   static constexpr bool own_cell_only = true;
+// The compact rebuild then writes a cell that comes out pure during the count pass and skips it
+// in the fill pass, so its content is computed once instead of twice. Sources that read other
+// cells (the halo's mirrors) must not: the count pass would overwrite what they read.
+template <class S, class = void>
+struct OwnCellOnly : std::false_type {};
+template <class S>
+struct OwnCellOnly<S, std::void_t<decltype(S::own_cell_only)>>
+    : std::integral_constant<bool, S::own_cell_only> {};
+
 template <class Source>
 void MaterialState::assign(const std::string& name, const Source& src) {
   const int nmat = nmat_;
@@ -310,11 +323,14 @@ void MaterialState::assign(const std::string& name, const Source& src) {
     return;
   }
   // Compact: count, scan, fill into the second buffer set, swap. A changed cell's content is
-  // computed twice (count and fill) instead of staged: the sources are cheap sums over stored
-  // fluxes, and staging would need a per-cell x nmat buffer, the dense layout's memory.
+  // computed in the count pass and, for a mixed cell (or any cell of a source that reads other
+  // cells), again in the fill pass instead of staged: staging would need a per-cell x nmat
+  // buffer, the dense layout's memory. Pure results of an own-cell-only source are written in
+  // the count pass (most cells of a scene are pure).
   const CompactDev old = compact_;
   CompactDev nw = next_;
   const int ey = ey_, ez = ez_;
+  constexpr bool early = OwnCellOnly<Source>::value;
   Kokkos::parallel_for(
       name + "::count", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
         if (!src.changed(i, j, k)) {
@@ -324,8 +340,17 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
         for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
         src.content(i, j, k, a, r, en);
-        int n = 0;
-        for (int m = 0; m < nmat; ++m) n += a[m] > 0 ? 1 : 0;
+        int n = 0, id = 0;
+        for (int m = 0; m < nmat; ++m)
+          if (a[m] > 0) {
+            ++n;
+            id = m;
+          }
+        if (early && n <= 1) {
+          nw.mat(i, j, k) = id;
+          cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+          n = -1 - n;  // done: the fill pass skips it (and restores n)
+        }
         nw.nm(i, j, k) = n;
       });
   // Slots before each cell (low 32 bits) and mixed rows before it (high bits), in one scan.
@@ -338,7 +363,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         const int n = nw.nm(i, j, k);
         if (final) {
           nw.first(i, j, k) = int(acc & 0xffffffffLL);
-          nw.mat(i, j, k) = n > 1 ? -int(acc >> 32) - 1 : 0;
+          if (n >= 0) nw.mat(i, j, k) = n > 1 ? -int(acc >> 32) - 1 : 0;
         }
         if (n > 1) acc += (1LL << 32) + n;
       },
@@ -353,6 +378,10 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   Kokkos::parallel_for(
       name + "::fill", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
         const int n = nw.nm(i, j, k);
+        if (n < 0) {  // written by the count pass
+          nw.nm(i, j, k) = -1 - n;
+          return;
+        }
         const int q0 = nw.first(i, j, k);
         if (n > 1) nw.mixed(-nw.mat(i, j, k) - 1) = (i * ey + j) * ez + k;
         if (!src.changed(i, j, k)) {
