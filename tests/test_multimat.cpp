@@ -344,7 +344,7 @@ struct SliverSource {
   }
   KOKKOS_INLINE_FUNCTION int content(int i, int, int, Real* a, Real* r, Real* en) const {
     const double x = g.node_coord(0, i) + 0.5 * g.dx[0];
-    const Real f = Kokkos::Experimental::pow(Real(10), Real(-12 + (i % 7)));
+    const Real f = MP_KOKKOS_MATH::pow(Real(10), Real(-12 + (i % 7)));
     const Real water = x < 70 ? 1 - f : f;
     a[0] = water;
     a[1] = 1 - water;
