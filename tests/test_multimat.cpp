@@ -327,6 +327,18 @@ TEST(MultiMaterial, WaterAirShockTubeMatchesExactSolution) {
 
 namespace {
 
+// A water|air cell at the scene's initial densities (material 0 water, 1 air).
+KOKKOS_INLINE_FUNCTION int water_air_content(Real water, Real e_water, Real e_air, Real* a, Real* r,
+                                             Real* en) {
+  a[0] = water;
+  a[1] = 1 - water;
+  r[0] = 1.0;
+  r[1] = 1e-3;
+  en[0] = e_water;
+  en[1] = e_air;
+  return 2;
+}
+
 // Replaces the content of the owned cells within 10 cm of the water-air interface by a sliver
 // of the other material: air at fraction f in the water (60 < x < 70 cm), water at fraction f
 // in the air (70 < x < 80 cm), f = 1e-12, 1e-11, ..., 1e-6 cycling with the cell index. Each
@@ -345,14 +357,7 @@ struct SliverSource {
   KOKKOS_INLINE_FUNCTION int content(int i, int, int, Real* a, Real* r, Real* en) const {
     const double x = g.node_coord(0, i) + 0.5 * g.dx[0];
     const Real f = MP_KOKKOS_MATH::pow(Real(10), Real(-12 + (i % 7)));
-    const Real water = x < 70 ? 1 - f : f;
-    a[0] = water;
-    a[1] = 1 - water;
-    r[0] = 1.0;
-    r[1] = 1e-3;
-    en[0] = e_water;
-    en[1] = e_air;
-    return 2;
+    return water_air_content(x < 70 ? 1 - f : f, e_water, e_air, a, r, en);
   }
 };
 
@@ -447,12 +452,7 @@ struct HalfHalfSource {
   Real e_water, e_air;
   KOKKOS_INLINE_FUNCTION bool changed(int, int, int) const { return true; }
   KOKKOS_INLINE_FUNCTION int content(int, int, int, Real* a, Real* r, Real* en) const {
-    a[0] = a[1] = 0.5;
-    r[0] = 1.0;
-    r[1] = 1e-3;
-    en[0] = e_water;
-    en[1] = e_air;
-    return 2;
+    return water_air_content(0.5, e_water, e_air, a, r, en);
   }
 };
 
