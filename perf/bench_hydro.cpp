@@ -1,18 +1,23 @@
 // Single-material hydro throughput: cell-cycles per second of the full cycle (Lagrange, remap,
 // halos, EOS, time step) on the 3-D Sedov scene at several sizes, beside the STREAM triad
-// bandwidth of the same process. Writes JSON (machine-readable) and prints a markdown table.
-//   bench_hydro [--sizes 32,64] [--cycles 40] [--json perf/results/hydro.json]
+// bandwidth of the same process. Writes JSON (machine-readable) and prints a markdown table,
+// then a per-kernel breakdown from a separate block of cycles with a Kokkos::fence before and
+// after every kernel (perf/kernel_timer.hpp; the plain timing has no extra fences).
+//   bench_hydro [--sizes 32,64] [--cycles 40] [--no-breakdown] [--json perf/results/hydro.json]
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <sstream>
+#include <vector>
 
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
+#include "kernel_timer.hpp"
 #include "report.hpp"
 
 using namespace mp;
@@ -28,6 +33,8 @@ int main(int argc, char** argv) {
     int cycles = 40, warmup = 5;
     std::string deck = std::string(MINIPAGOSA_SOURCE_DIR) + "/configs/sedov.yaml";
     std::string json;
+    bool no_breakdown = false;
+    app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");
     app.add_option("--sizes", sizes, "cells per axis of each run")->delimiter(',');
     app.add_option("--cycles", cycles, "timed cycles per size");
     app.add_option("--warmup", warmup, "untimed cycles first");
@@ -43,7 +50,7 @@ int main(int argc, char** argv) {
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
     if (rc == 0) {
       const perf::Stream st = perf::stream_triad(1L << 24, 10);
-      std::ostringstream rows, js;
+      std::ostringstream rows, js, krows;
       perf::json_machine(js, "hydro_single_material", st, nranks);
       js << ",\n  \"deck\": \"" << deck << "\",\n  \"runs\": [";
       for (std::size_t n = 0; n < sizes.size(); ++n) {
@@ -75,7 +82,50 @@ int main(int argc, char** argv) {
            << ", \"cell_cycles_per_second\": " << rate << ", \"phase_seconds_per_cycle\": {";
         for (int ph = 0; ph < 5; ++ph)
           js << (ph ? ", " : "") << "\"" << phase_names[ph] << "\": " << phase[ph] / cycles;
-        js << "}}";
+        js << "}";
+        if (!no_breakdown) {
+          // A separate fenced block: every kernel charged its own time (rank 0's view).
+          perf::RunClock clock;
+          {
+            perf::KernelTimer warm;  // the timer's first fences; not counted
+          }
+          Kokkos::fence();
+          MPI_Barrier(MPI_COMM_WORLD);
+          const auto t0 = std::chrono::steady_clock::now();
+          std::vector<std::pair<std::string, perf::KernelStat>> ks;
+          {
+            perf::KernelTimer kt;
+            perf::run_cycles(sim.hydro(), clock, 0, cycles);
+            ks.assign(kt.kernels().begin(), kt.kernels().end());
+          }
+          const double fenced =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          std::sort(ks.begin(), ks.end(), [](const auto& a, const auto& b) {
+            return a.second.seconds > b.second.seconds;
+          });
+          double in_kernels = 0;
+          js << ", \"breakdown\": {\"fenced_seconds_per_cycle\": " << fenced / cycles
+             << ", \"kernels\": {";
+          for (std::size_t q = 0; q < ks.size(); ++q) {
+            in_kernels += ks[q].second.seconds;
+            js << (q ? ", " : "") << "\"" << ks[q].first
+               << "\": {\"seconds_per_cycle\": " << ks[q].second.seconds / cycles
+               << ", \"calls_per_cycle\": " << double(ks[q].second.calls) / cycles << "}";
+            // kernels above 2 % of the fenced cycle get a table row
+            if (ks[q].second.seconds > 0.02 * fenced)
+              krows << "| " << s << "^3 | " << ks[q].first << " | "
+                    << ks[q].second.seconds / cycles * 1e3 << " | "
+                    << double(ks[q].second.calls) / cycles << " | "
+                    << 100 * ks[q].second.seconds / fenced << " |\n";
+          }
+          js << "}}";
+          krows << "| " << s << "^3 | (outside kernels: MPI, host) | "
+                << (fenced - in_kernels) / cycles * 1e3 << " | | "
+                << 100 * (fenced - in_kernels) / fenced << " |\n";
+          krows << "| " << s << "^3 | **fenced cycle** | " << fenced / cycles * 1e3
+                << " | | 100 |\n";
+        }
+        js << "}";
       }
       js << "\n  ]\n}\n";
       if (rank == 0) {
@@ -86,6 +136,14 @@ int main(int argc, char** argv) {
             "| %% lagrange | %% remap | %% eos+q | %% check |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n%s",
             rows.str().c_str());
+        if (!no_breakdown)
+          std::printf(
+              "\nPer-kernel breakdown (separate block, Kokkos::fence before and after every "
+              "kernel; "
+              "kernels above 2 %% of the fenced cycle):\n\n"
+              "| size | kernel | ms/cycle | calls/cycle | %% of fenced cycle |\n"
+              "|---|---|---|---|---|\n%s",
+              krows.str().c_str());
         perf::write_json(json, js.str());
       }
     }
