@@ -71,6 +71,9 @@ struct State {
   Field3 ub, vb, wb;  // time-centred velocity of the Lagrangian step
   Field3 node_mass;   // remap scratch: nodal (dual-cell) mass before a sweep
   Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
+  // remap scratch of a split sweep: mass flux and upwind velocities of the dual face above
+  // each node along the sweep's axis
+  Field3 dual_flux, dual_u, dual_v, dual_w;
   // faces, stored in node-extent views: face d at index i sits at node coordinate i along d
   std::array<Field3, 3> vol_flux;
   std::array<Field3, 3> mass_flux, energy_flux;  // through faces normal to x, y, z

@@ -30,6 +30,10 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.wb = mesh.new_field("velocity_z_mid", N);
   s_.node_mass = mesh.new_field("node_mass", N);
   s_.ke_loss = mesh.new_field("ke_loss", N);
+  s_.dual_flux = mesh.new_field("dual_flux", N);
+  s_.dual_u = mesh.new_field("dual_u", N);
+  s_.dual_v = mesh.new_field("dual_v", N);
+  s_.dual_w = mesh.new_field("dual_w", N);
   for (int d = 0; d < 3; ++d)
     s_.vol_flux[d] = mesh.new_field(std::string("volume_flux_") + "xyz"[d], N);
   for (int d = 0; d < 3; ++d) {

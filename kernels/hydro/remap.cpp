@@ -11,6 +11,58 @@
 
 namespace mp::hydro {
 
+namespace {
+
+// Mass flux through the dual face between node c = (ci, cj, ck) and node c + e_d: the average
+// of the mass fluxes through the two cell faces bounding cell c along d, over the four cells
+// around the node line.
+KOKKOS_INLINE_FUNCTION Real dual_mass_flux(const Field3& mf, int ci, int cj, int ck, int d) {
+  const int sx = d == 0, sy = d == 1, sz = d == 2;
+  // unit steps along the two transverse axes
+  const int tx1 = d == 0 ? 0 : 1, ty1 = d == 0 ? 1 : 0, tz1 = 0;
+  const int tx2 = 0, ty2 = d == 2 ? 1 : 0, tz2 = d == 2 ? 0 : 1;
+  Real f = 0;
+  for (int b = 0; b < 2; ++b)
+    for (int a = 0; a < 2; ++a) {
+      const int oi = ci - a * tx1 - b * tx2, oj = cj - a * ty1 - b * ty2,
+                ok = ck - a * tz1 - b * tz2;
+      f += mf(oi, oj, ok) + mf(oi + sx, oj + sy, ok + sz);
+    }
+  return Real(0.125) * f;
+}
+
+// Node value on the upwind side of the dual face above node c along d (mass flux f), with a
+// limited slope.
+KOKKOS_INLINE_FUNCTION Real dual_face_value(const Field3& phi, const Field3& nm, int ci, int cj,
+                                            int ck, int d, Real f, int ord) {
+  const int sx = d == 0, sy = d == 1, sz = d == 2;
+  const int s = f > 0 ? 0 : 1;  // donor: node below (0) or above (1)
+  const int di = ci + s * sx, dj = cj + s * sy, dk = ck + s * sz;
+  const int st = f > 0 ? 1 : -1;  // wind direction in index steps
+  const Real up = phi(di - st * sx, dj - st * sy, dk - st * sz);
+  const Real dn = phi(di + st * sx, dj + st * sy, dk + st * sz);
+  const Real sigma = mabs(f) / nm(di, dj, dk);
+  return face_value(up, phi(di, dj, dk), dn, sigma, ord);
+}
+
+// A node's mass, momentum and carried kinetic energy, gaining the flux through its low dual
+// face and losing the flux through its high one.
+struct DualUpdate {
+  Real m1, pu, pv, pw, ke_flux;
+  KOKKOS_INLINE_FUNCTION void add(Real f_lo, Real f_hi, Real ul, Real uh, Real vl, Real vh, Real wl,
+                                  Real wh) {
+    m1 += f_lo - f_hi;
+    pu += f_lo * ul - f_hi * uh;
+    pv += f_lo * vl - f_hi * vh;
+    pw += f_lo * wl - f_hi * wh;
+    // kinetic energy carried by the same face values, to measure the remap's loss
+    ke_flux +=
+        Real(0.5) * (f_lo * (ul * ul + vl * vl + wl * wl) - f_hi * (uh * uh + vh * vh + wh * wh));
+  }
+};
+
+}  // namespace
+
 void Hydro::remap(long cycle) {
   if (opt_.unsplit) {
     remap_step({true, true, true}, {true, true, true});
@@ -127,66 +179,72 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
         });
   }
 
-  // Momentum through the dual faces normal to each axis d. The dual face at cell c (between
-  // nodes c and c+1) carries the average of the mass fluxes through the two cell faces bounding
-  // c, over the four cells around the node line.
+  // Momentum through the dual faces normal to each moved axis. A split sweep (one axis) first
+  // computes every dual face's mass flux and upwind velocities once ("remap::dual_face"), then
+  // updates the nodes from their two faces; the unsplit step does both per node. Both run the
+  // same point functions in the same order, so the fields do not depend on the path.
   auto u = s_.u, v = s_.v, w = s_.w, un = s_.ub, vn = s_.vb, wn = s_.wb, kel = s_.ke_loss;
-  Kokkos::parallel_for(
-      "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k);
-        const Real m0 = nm(i, j, k);
-        Real m1 = m0, pu = u0 * m0, pv = v0 * m0, pw = w0 * m0, ke_flux = 0;
-        for (int d = 0; d < 3; ++d) {
-          if (!(d == 0 ? ax > 0 : d == 1 ? ay > 0 : az > 0)) continue;
-          const auto& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
-          const int sx = d == 0, sy = d == 1, sz = d == 2;
-          // unit steps along the two transverse axes
-          const int tx1 = d == 0 ? 0 : 1, ty1 = d == 0 ? 1 : 0, tz1 = 0;
-          const int tx2 = 0, ty2 = d == 2 ? 1 : 0, tz2 = d == 2 ? 0 : 1;
-          // dual mass flux through the dual face at cell index c = node - 1 + side
-          auto dual_flux = [&](int side) {
-            const int ci = i + (side - 1) * sx, cj = j + (side - 1) * sy, ck = k + (side - 1) * sz;
-            Real f = 0;
-            for (int b = 0; b < 2; ++b)
-              for (int a = 0; a < 2; ++a) {
-                const int oi = ci - a * tx1 - b * tx2, oj = cj - a * ty1 - b * ty2,
-                          ok = ck - a * tz1 - b * tz2;
-                f += mf(oi, oj, ok) + mf(oi + sx, oj + sy, ok + sz);
-              }
-            return Real(0.125) * f;
-          };
-          // Node value on the upwind side of a dual face, with a limited slope.
-          auto face_u = [&](const Field3& phi, int side, Real f) {
-            const int c0i = i + (side - 1) * sx, c0j = j + (side - 1) * sy,
-                      c0k = k + (side - 1) * sz;  // node below the dual face
-            const int s = f > 0 ? 0 : 1;          // donor: node below (0) or above (1)
-            const int di = c0i + s * sx, dj = c0j + s * sy, dk = c0k + s * sz;
-            const int st = f > 0 ? 1 : -1;  // wind direction in index steps
-            const Real up = phi(di - st * sx, dj - st * sy, dk - st * sz);
-            const Real dn = phi(di + st * sx, dj + st * sy, dk + st * sz);
-            const Real sigma = mabs(f) / nm(di, dj, dk);
-            return face_value(up, phi(di, dj, dk), dn, sigma, ord);
-          };
-          const Real f_lo = dual_flux(0), f_hi = dual_flux(1);
-          const Real ul = face_u(u, 0, f_lo), uh = face_u(u, 1, f_hi);
-          const Real vl = face_u(v, 0, f_lo), vh = face_u(v, 1, f_hi);
-          const Real wl = face_u(w, 0, f_lo), wh = face_u(w, 1, f_hi);
-          m1 += f_lo - f_hi;
-          pu += f_lo * ul - f_hi * uh;
-          pv += f_lo * vl - f_hi * vh;
-          pw += f_lo * wl - f_hi * wh;
-          // kinetic energy carried by the same face values, to measure the remap's loss
-          ke_flux += Real(0.5) *
-                     (f_lo * (ul * ul + vl * vl + wl * wl) - f_hi * (uh * uh + vh * vh + wh * wh));
-        }
-        const Real u1 = pu / m1, v1 = pv / m1, w1 = pw / m1;
-        un(i, j, k) = u1;
-        vn(i, j, k) = v1;
-        wn(i, j, k) = w1;
-        const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
-        const Real ke1 = Real(0.5) * m1 * (u1 * u1 + v1 * v1 + w1 * w1);
-        kel(i, j, k) = ke0 + ke_flux - ke1;
-      });
+  auto finish = [=] KOKKOS_FUNCTION(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
+                                    const DualUpdate& du) {
+    const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
+    un(i, j, k) = u1;
+    vn(i, j, k) = v1;
+    wn(i, j, k) = w1;
+    const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
+    const Real ke1 = Real(0.5) * du.m1 * (u1 * u1 + v1 * v1 + w1 * w1);
+    kel(i, j, k) = ke0 + du.ke_flux - ke1;
+  };
+  if (int(ax + ay + az) == 1) {
+    const int d = ax > 0 ? 0 : ay > 0 ? 1 : 2;
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
+    const Field3 mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
+    auto F = s_.dual_flux, U = s_.dual_u, V = s_.dual_v, W = s_.dual_w;
+    // the faces between nodes c and c + 1 along d: both faces of every owned node
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+      const auto r = mesh_.range(Centering::Node, Region::Owned, a);
+      lo[a] = r[0] - (a == d);
+      hi[a] = r[1];
+    }
+    Kokkos::parallel_for(
+        "remap::dual_face", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+        KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real f = dual_mass_flux(mf, i, j, k, d);
+          F(i, j, k) = f;
+          U(i, j, k) = dual_face_value(u, nm, i, j, k, d, f, ord);
+          V(i, j, k) = dual_face_value(v, nm, i, j, k, d, f, ord);
+          W(i, j, k) = dual_face_value(w, nm, i, j, k, d, f, ord);
+        });
+    Kokkos::parallel_for(
+        "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
+          DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
+          const int li = i - sx, lj = j - sy, lk = k - sz;
+          du.add(F(li, lj, lk), F(i, j, k), U(li, lj, lk), U(i, j, k), V(li, lj, lk), V(i, j, k),
+                 W(li, lj, lk), W(i, j, k));
+          finish(i, j, k, m0, u0, v0, w0, du);
+        });
+  } else {
+    Kokkos::parallel_for(
+        "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
+          DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
+          for (int d = 0; d < 3; ++d) {
+            if (!(d == 0 ? ax > 0 : d == 1 ? ay > 0 : az > 0)) continue;
+            const Field3& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
+            const int li = i - (d == 0), lj = j - (d == 1), lk = k - (d == 2);
+            const Real f_lo = dual_mass_flux(mf, li, lj, lk, d);
+            const Real f_hi = dual_mass_flux(mf, i, j, k, d);
+            du.add(f_lo, f_hi, dual_face_value(u, nm, li, lj, lk, d, f_lo, ord),
+                   dual_face_value(u, nm, i, j, k, d, f_hi, ord),
+                   dual_face_value(v, nm, li, lj, lk, d, f_lo, ord),
+                   dual_face_value(v, nm, i, j, k, d, f_hi, ord),
+                   dual_face_value(w, nm, li, lj, lk, d, f_lo, ord),
+                   dual_face_value(w, nm, i, j, k, d, f_hi, ord));
+          }
+          finish(i, j, k, m0, u0, v0, w0, du);
+        });
+  }
   if (opt_.ke_fix && mm_) {
     mm_ke_fix();
   } else if (opt_.ke_fix) {
