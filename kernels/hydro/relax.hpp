@@ -14,16 +14,22 @@
 //    internal energy sum M_m e_m is unchanged (sum dV_m = 0): relaxation conserves mass, volume
 //    and energy of the cell exactly, and the compressed material gains the work the expanding
 //    one gives up;
-//  - the step is damped so that no material loses more than half its volume in one iteration
-//    (one common factor on every dV_m keeps sum dV_m = 0), which keeps volumes and densities
-//    positive when a sliver of soft gas sits in a stiff liquid;
-//  - iterate with the EOS re-evaluated (Newton on the linearised system) until the pressures
-//    agree to `tol` relative to the largest |p_m| or `max_iter` iterations are spent. With few
+//  - the step is damped so that no material loses more than half or gains more than all of its
+//    volume in one iteration (one common factor on every dV_m keeps sum dV_m = 0), which keeps
+//    volumes and densities positive when a sliver of soft gas sits in a stiff liquid;
+//  - iterate with the EOS re-evaluated until the pressures agree to `tol` relative to the
+//    largest |p_m| or `max_iter` iterations are spent. The linearisation follows the isentrope
+//    but the work is charged at P*, so this is a damped fixed-point iteration (linear, not
+//    quadratic, convergence) and the end state depends on the path: the compressed material
+//    gains more than isentropic work, as across a weak shock (a dissipative closure). With few
 //    iterations the cell moves part of the way toward equilibrium each cycle.
 //
-// Works with any EOS kind of eos.hpp (the only EOS input is p and c^2 at (rho, e)); a material
-// whose c^2 is not positive (outside its validity range) gets the floor kSoundSpeed2Floor and
-// so takes (almost) all of the volume change, which is the stable choice.
+// Works with any EOS kind of eos.hpp (the only EOS input is p and c^2 at (rho, e)). A material
+// whose c^2 is not positive (outside its validity range, e.g. a stiffened gas below -p_inf) is
+// thermodynamically unstable there: compressing it at its own pressure lowers that pressure
+// further, and relaxing toward it runs away (its volume to zero). Such a material is left
+// alone (volume and energy kept) and the others relax among themselves; with fewer than two
+// materials in range nothing moves.
 #pragma once
 #include "core/math.hpp"
 #include "eos/eos.hpp"
@@ -42,29 +48,56 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
                                                    Real* vol, const Real* mass, Real* e, Real* p,
                                                    int max_iter, Real tol) {
   constexpr int kMax = 16;
-  Real k[kMax], dv[kMax];
+  Real wgt[kMax], dv[kMax];
   Real total = 0;
   for (int s = 0; s < n; ++s) total += vol[s];
   RelaxResult r{0, 0};
   for (int it = 0;; ++it) {
     Real num = 0, den = 0, scale = 0;
+    int active = 0;
     for (int s = 0; s < n; ++s) {
       const Real rho = mass[s] / vol[s];
       p[s] = eos[id[s]].pressure(rho, e[s]);
-      k[s] = rho * mmax(eos[id[s]].sound_speed2(rho, e[s]), eos::kSoundSpeed2Floor);
-      num += vol[s] * p[s] / k[s];
-      den += vol[s] / k[s];
+      const Real c2 = eos[id[s]].sound_speed2(rho, e[s]);
+      // volume change per unit pressure change; 0: out of range, left alone
+      wgt[s] = c2 > 0 ? vol[s] / (rho * c2) : Real(0);
+      if (!(wgt[s] > 0)) continue;
+      ++active;
+      num += wgt[s] * p[s];
+      den += wgt[s];
       scale = mmax(scale, mabs(p[s]));
     }
+    if (active < 2) {  // nothing to relax; report the spread over all materials
+      Real lo = p[0], hi = p[0], big = 0;
+      for (int s = 0; s < n; ++s) {
+        lo = mmin(lo, p[s]);
+        hi = mmax(hi, p[s]);
+        big = mmax(big, mabs(p[s]));
+      }
+      r.spread = big > 0 ? (hi - lo) / big : Real(0);
+      break;
+    }
     const Real pstar = num / den;
+    // p_s - P* as sum_o w_o (p_s - p_o) / sum_o w_o: no cancellation when one weight dwarfs
+    // the others (a soft gas beside a stiff solid, whose P* is the gas's p to round-off), so
+    // sum dV = 0 holds to round-off.
     Real spread = 0;
-    for (int s = 0; s < n; ++s) spread = mmax(spread, mabs(p[s] - pstar));
+    for (int s = 0; s < n; ++s) {
+      dv[s] = 0;
+      if (!(wgt[s] > 0)) continue;
+      Real diff = 0;
+      for (int o = 0; o < n; ++o) diff += wgt[o] * (p[s] - p[o]);
+      diff /= den;
+      spread = mmax(spread, mabs(diff));
+      dv[s] = wgt[s] * diff;
+    }
     r.spread = scale > 0 ? spread / scale : spread;
     if (!(r.spread > tol) || it == max_iter) break;
+    // one factor on every dV: no material below half or above twice its volume per update
     Real theta = 1;
     for (int s = 0; s < n; ++s) {
-      dv[s] = vol[s] * (p[s] - pstar) / k[s];
       if (dv[s] < 0) theta = mmin(theta, Real(0.5) * vol[s] / -dv[s]);
+      if (dv[s] > 0) theta = mmin(theta, vol[s] / dv[s]);
     }
     Real sum = 0;
     for (int s = 0; s < n; ++s) {
@@ -73,7 +106,7 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
       vol[s] += d;
       sum += vol[s];
     }
-    // sum dV = 0 in exact arithmetic; rescale so the cell volume is kept to the last bit
+    // sum dV = 0 to round-off (above); rescale so the cell volume is kept to the last bit
     for (int s = 0; s < n; ++s) vol[s] *= total / sum;
     r.iterations = it + 1;
   }
