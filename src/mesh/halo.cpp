@@ -61,21 +61,48 @@ void recv_range(const Mesh& m, Centering c, int d, int s, int& first, int& last)
   last = first + ng;
 }
 
-void pack(const Field3& f, const Buffer& buf, const Slab& sl, int offset) {
+// Up to kBatch fields of one layout handled by one kernel (one launch per slab instead of one
+// per field); exchanges carry two or three fields.
+constexpr int kBatch = 4;
+struct Batch {
+  Kokkos::Array<Field3, kBatch> f;
+  Kokkos::Array<Real, kBatch> sign;  // parity under reflection along the sweep's axis
+  int n = 0;
+  int first = 0;  // index of the batch's first field in the exchange
+};
+
+std::vector<Batch> batches(const std::vector<HaloField>& fields, int d) {
+  std::vector<Batch> out;
+  for (std::size_t q = 0; q < fields.size(); ++q) {
+    if (q % kBatch == 0) {
+      out.emplace_back();
+      out.back().first = int(q);
+    }
+    Batch& b = out.back();
+    b.f[b.n] = fields[q].view;
+    b.sign[b.n] = Real(fields[q].parity[d]);
+    ++b.n;
+  }
+  return out;
+}
+
+void pack(const Batch& b, const Buffer& buf, const Slab& sl, int per_field) {
   const int n0 = sl.hi[0] - sl.lo[0], n1 = sl.hi[1] - sl.lo[1];
   const int l0 = sl.lo[0], l1 = sl.lo[1], l2 = sl.lo[2];
   Kokkos::parallel_for(
       "halo::pack", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        buf(offset + (i - l0) + n0 * ((j - l1) + n1 * (k - l2))) = f(i, j, k);
+        const int at = (i - l0) + n0 * ((j - l1) + n1 * (k - l2));
+        for (int q = 0; q < b.n; ++q) buf((b.first + q) * per_field + at) = b.f[q](i, j, k);
       });
 }
 
-void unpack(const Field3& f, const Buffer& buf, const Slab& sl, int offset) {
+void unpack(const Batch& b, const Buffer& buf, const Slab& sl, int per_field) {
   const int n0 = sl.hi[0] - sl.lo[0], n1 = sl.hi[1] - sl.lo[1];
   const int l0 = sl.lo[0], l1 = sl.lo[1], l2 = sl.lo[2];
   Kokkos::parallel_for(
       "halo::unpack", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        f(i, j, k) = buf(offset + (i - l0) + n0 * ((j - l1) + n1 * (k - l2)));
+        const int at = (i - l0) + n0 * ((j - l1) + n1 * (k - l2));
+        for (int q = 0; q < b.n; ++q) b.f[q](i, j, k) = buf((b.first + q) * per_field + at);
       });
 }
 
@@ -150,7 +177,7 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
     }
     send_range(mesh_, c, d, s, first, last);
     const Slab sl = slab(mesh_, f0, d, first, last);
-    for (int f = 0; f < nf; ++f) pack(fields[f].view, send_[s], sl, f * per_field);
+    for (const Batch& b : batches(fields, d)) pack(b, send_[s], sl, per_field);
   }
 
   if (any) {
@@ -159,23 +186,22 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
       if (mesh_.physical_boundary(d, s)) continue;
       recv_range(mesh_, c, d, s, first, last);
       const Slab sl = slab(mesh_, f0, d, first, last);
-      for (int f = 0; f < nf; ++f) unpack(fields[f].view, recv_[s], sl, f * per_field);
+      for (const Batch& b : batches(fields, d)) unpack(b, recv_[s], sl, per_field);
     }
   }
   for (int s = 0; s < 2; ++s)
-    if (mesh_.physical_boundary(d, s))
-      for (const auto& f : fields) apply_boundary(f, d, s);
+    if (mesh_.physical_boundary(d, s)) apply_boundary(fields, d, s);
 }
 
 // Reflective: the ghost layer is the mirror image of the interior, times the field's parity
 // (a velocity normal to the wall changes sign; it vanishes on the wall node itself, which
 // zero_wall_node set at the start of the sweep).
 // Outflow: zero gradient, every ghost layer copies the boundary cell or node.
-void Halo::apply_boundary(const HaloField& hf, int d, int side) const {
+void Halo::apply_boundary(const std::vector<HaloField>& fields, int d, int side) const {
+  const HaloField& hf = fields[0];  // every field of an exchange shares its layout
   const int ng = Mesh::ng, nl = mesh_.owned_cells(d);
   const bool node = hf.along(d) == Centering::Node;
   const BoundaryKind kind = mesh_.boundary(d, side);
-  const Real sign = Real(hf.parity[d]);
   // The wall: the owned layer adjacent to the face (cells) or the face node itself (nodes).
   const int wall = side == 0 ? ng : (node ? ng + nl : ng + nl - 1);
   const int dir = side == 0 ? -1 : 1;  // from the wall outwards
@@ -183,22 +209,22 @@ void Halo::apply_boundary(const HaloField& hf, int d, int side) const {
   int first = 0, last = 0;
   recv_range(mesh_, hf.along(d), d, side, first, last);
   const Slab sl = slab(mesh_, hf, d, first, last);
-  auto f = hf.view;
   const bool reflective = kind == BoundaryKind::Reflective;
-  Kokkos::parallel_for(
-      "halo::boundary", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        int idx[3] = {i, j, k};
-        const int layer = (idx[d] - first_ghost) * dir;  // 0 next to the wall, 1 beyond
-        int src[3] = {i, j, k};
-        if (reflective) {
-          // cells: mirror across the face; nodes: mirror across the wall node
-          src[d] = node ? wall - dir * (layer + 1) : wall - dir * layer;
-          f(i, j, k) = sign * f(src[0], src[1], src[2]);
-        } else {
-          src[d] = wall;
-          f(i, j, k) = f(src[0], src[1], src[2]);
-        }
-      });
+  for (const Batch& b : batches(fields, d))
+    Kokkos::parallel_for(
+        "halo::boundary", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          int idx[3] = {i, j, k};
+          const int layer = (idx[d] - first_ghost) * dir;  // 0 next to the wall, 1 beyond
+          int src[3] = {i, j, k};
+          // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
+          // wall value
+          src[d] = reflective ? (node ? wall - dir * (layer + 1) : wall - dir * layer) : wall;
+          for (int q = 0; q < b.n; ++q) {
+            const auto& f = b.f[q];
+            f(i, j, k) =
+                reflective ? b.sign[q] * f(src[0], src[1], src[2]) : f(src[0], src[1], src[2]);
+          }
+        });
 }
 
 }  // namespace mp
