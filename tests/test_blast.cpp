@@ -86,7 +86,7 @@ TEST(Sedov, ShockRadiusAndSymmetry) {
   EXPECT_LT(asym, 3e-3);
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
   std::printf("Sedov: relative total energy change %.3e\n", de);
-  EXPECT_LT(std::abs(de), 0.01);
+  EXPECT_LT(std::abs(de), 5e-3);  // observed +2.3e-3 (the KE fix returns only dissipation)
 }
 
 TEST(Sedov, UnsplitRemapIsSymmetricToRoundOff) {

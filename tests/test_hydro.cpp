@@ -192,7 +192,9 @@ TEST(Conservation, ClosedBoxMassToRoundOff) {
       "%.3e\n",
       dm, de, r.result.end.momentum[0]);
   EXPECT_LT(std::abs(dm), 1e-13);
-  EXPECT_LT(std::abs(de), 1e-3);
+  // The KE fix returns only the dissipated kinetic energy; the energy the limiter creates stays
+  // (docs/numerics.md, step 6): observed +1.8e-5. The bound guards that balance.
+  EXPECT_LT(std::abs(de), 1e-4);
   EXPECT_LT(std::abs(r.result.end.momentum[1]), 1e-14);
 }
 

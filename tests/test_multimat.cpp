@@ -177,7 +177,7 @@ TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
       "triple point: %ld cycles to t = %.2f; largest material mass change %.2e; total "
       "energy change %.2e\n",
       r.result.cycles, r.result.time, worst, de);
-  EXPECT_LT(std::abs(de), 2e-3);
+  EXPECT_LT(std::abs(de), 1e-3);  // observed +2.6e-4 (the KE fix returns only dissipation)
 }
 
 TEST(MultiMaterial, DenseAndCompactLayoutsAgree) {
