@@ -160,7 +160,7 @@ Health Hydro::lagrange(Real dt) {
           const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
           const Real mass = rho(i, j, k) * vol;
           const Real v_half = vol + dv;
-          const Real e_half = e(i, j, k) - (p(i, j, k) + q(i, j, k)) * dv / mass;
+          const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
           ph(i, j, k) = eos.pressure(mass / v_half, e_half);
         });
 
@@ -207,7 +207,7 @@ Health Hydro::lagrange(Real dt) {
         "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
           const Real mass = rho(i, j, k) * vol;
-          e(i, j, k) -= (ph(i, j, k) + q(i, j, k)) * dv / mass;
+          e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
           rho(i, j, k) = mass / (vol + dv);
         });
 

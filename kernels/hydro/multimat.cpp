@@ -309,7 +309,7 @@ void Hydro::mm_predictor(Real vol) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          const Real e_half = *m.e - (*m.p + q(i, j, k)) * dv / mass;
+          const Real e_half = pdv_energy(*m.e, *m.p, q(i, j, k), dv, mass);
           const Real pm = mats.eos[m.m].pressure(mass / v_half, e_half);
           *m.ph = pm;
           sum += m.alpha * pm;
@@ -340,7 +340,7 @@ void Hydro::mm_corrector(Real vol) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          *m.e -= (*m.ph + q(i, j, k)) * dv / mass;
+          *m.e = pdv_energy(*m.e, *m.ph, q(i, j, k), dv, mass);
           *m.rho = mass / vnew;
           slot[n] = s;
           id[n] = m.m;

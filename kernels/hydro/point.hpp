@@ -37,6 +37,13 @@ KOKKOS_INLINE_FUNCTION Real face_value(Real up, Real donor, Real down, Real sigm
   return donor + Real(0.5) * (1 - sigma) * slope;
 }
 
+// Specific internal energy after the volume change dv of a cell (or material) of mass `mass`
+// under pressure p and viscosity q: the Lagrangian p dV work, shared by the single- and
+// multi-material predictor and corrector.
+KOKKOS_INLINE_FUNCTION Real pdv_energy(Real e, Real p, Real q, Real dv, Real mass) {
+  return e - (p + q) * dv / mass;
+}
+
 // Mass and internal-energy flux through a face with volume flux f (signed along the axis) out of
 // a donor cell of volume `pre`, from van Leer face values of density (Courant number |f|/pre)
 // and of specific energy (the mass Courant number). up / donor / down ordered along the wind.

@@ -106,6 +106,41 @@ void unpack(const Batch& b, const Buffer& buf, const Slab& sl, int per_field) {
       });
 }
 
+// Reflective: the ghost layer is the mirror image of the interior, times the field's parity
+// (a velocity normal to the wall changes sign; it vanishes on the wall node itself, which
+// zero_wall_node set at the start of the sweep).
+// Outflow: zero gradient, every ghost layer copies the boundary cell or node.
+void apply_boundary(const Mesh& mesh, const HaloField& hf, const std::vector<Batch>& bs, int d,
+                    int side) {
+  // hf: the first field; every field of an exchange shares its layout
+  const int ng = Mesh::ng, nl = mesh.owned_cells(d);
+  const bool node = hf.along(d) == Centering::Node;
+  const BoundaryKind kind = mesh.boundary(d, side);
+  // The wall: the owned layer adjacent to the face (cells) or the face node itself (nodes).
+  const int wall = side == 0 ? ng : (node ? ng + nl : ng + nl - 1);
+  const int dir = side == 0 ? -1 : 1;  // from the wall outwards
+  const int first_ghost = node ? wall + dir : (side == 0 ? ng - 1 : ng + nl);
+  int first = 0, last = 0;
+  recv_range(mesh, hf.along(d), d, side, first, last);
+  const Slab sl = slab(mesh, hf, d, first, last);
+  const bool reflective = kind == BoundaryKind::Reflective;
+  for (const Batch& b : bs)
+    Kokkos::parallel_for(
+        "halo::boundary", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
+          int idx[3] = {i, j, k};
+          const int layer = (idx[d] - first_ghost) * dir;  // 0 next to the wall, 1 beyond
+          int src[3] = {i, j, k};
+          // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
+          // wall value
+          src[d] = reflective ? (node ? wall - dir * (layer + 1) : wall - dir * layer) : wall;
+          for (int q = 0; q < b.n; ++q) {
+            const auto& f = b.f[q];
+            f(i, j, k) =
+                reflective ? b.sign[q] * f(src[0], src[1], src[2]) : f(src[0], src[1], src[2]);
+          }
+        });
+}
+
 MPI_Datatype mpi_real() {
   return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
 }
@@ -166,6 +201,7 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
   send_range(mesh_, c, d, 0, first, last);
   const int per_field = slab(mesh_, f0, d, first, last).size();
   const int count = nf * per_field;
+  const std::vector<Batch> bs = batches(fields, d);  // up to kBatch fields per launch
 
   bool any = false;
   for (int s = 0; s < 2; ++s) {
@@ -177,7 +213,7 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
     }
     send_range(mesh_, c, d, s, first, last);
     const Slab sl = slab(mesh_, f0, d, first, last);
-    for (const Batch& b : batches(fields, d)) pack(b, send_[s], sl, per_field);
+    for (const Batch& b : bs) pack(b, send_[s], sl, per_field);
   }
 
   if (any) {
@@ -186,45 +222,11 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
       if (mesh_.physical_boundary(d, s)) continue;
       recv_range(mesh_, c, d, s, first, last);
       const Slab sl = slab(mesh_, f0, d, first, last);
-      for (const Batch& b : batches(fields, d)) unpack(b, recv_[s], sl, per_field);
+      for (const Batch& b : bs) unpack(b, recv_[s], sl, per_field);
     }
   }
   for (int s = 0; s < 2; ++s)
-    if (mesh_.physical_boundary(d, s)) apply_boundary(fields, d, s);
-}
-
-// Reflective: the ghost layer is the mirror image of the interior, times the field's parity
-// (a velocity normal to the wall changes sign; it vanishes on the wall node itself, which
-// zero_wall_node set at the start of the sweep).
-// Outflow: zero gradient, every ghost layer copies the boundary cell or node.
-void Halo::apply_boundary(const std::vector<HaloField>& fields, int d, int side) const {
-  const HaloField& hf = fields[0];  // every field of an exchange shares its layout
-  const int ng = Mesh::ng, nl = mesh_.owned_cells(d);
-  const bool node = hf.along(d) == Centering::Node;
-  const BoundaryKind kind = mesh_.boundary(d, side);
-  // The wall: the owned layer adjacent to the face (cells) or the face node itself (nodes).
-  const int wall = side == 0 ? ng : (node ? ng + nl : ng + nl - 1);
-  const int dir = side == 0 ? -1 : 1;  // from the wall outwards
-  const int first_ghost = node ? wall + dir : (side == 0 ? ng - 1 : ng + nl);
-  int first = 0, last = 0;
-  recv_range(mesh_, hf.along(d), d, side, first, last);
-  const Slab sl = slab(mesh_, hf, d, first, last);
-  const bool reflective = kind == BoundaryKind::Reflective;
-  for (const Batch& b : batches(fields, d))
-    Kokkos::parallel_for(
-        "halo::boundary", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-          int idx[3] = {i, j, k};
-          const int layer = (idx[d] - first_ghost) * dir;  // 0 next to the wall, 1 beyond
-          int src[3] = {i, j, k};
-          // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
-          // wall value
-          src[d] = reflective ? (node ? wall - dir * (layer + 1) : wall - dir * layer) : wall;
-          for (int q = 0; q < b.n; ++q) {
-            const auto& f = b.f[q];
-            f(i, j, k) =
-                reflective ? b.sign[q] * f(src[0], src[1], src[2]) : f(src[0], src[1], src[2]);
-          }
-        });
+    if (mesh_.physical_boundary(d, s)) apply_boundary(mesh_, fields[0], bs, d, s);
 }
 
 }  // namespace mp

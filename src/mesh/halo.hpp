@@ -46,7 +46,6 @@ class Halo {
 
  private:
   void exchange_axis(const std::vector<HaloField>& fields, int d);
-  void apply_boundary(const std::vector<HaloField>& fields, int d, int side) const;
 
   const Mesh& mesh_;
   Buffer send_[2], recv_[2];
