@@ -250,6 +250,19 @@ TEST(Deck, MaterialsAndRegions) {
                {"deck.yaml:16:", "key 'numerics.relaxation_iterations'", "out of range"});
   expect_holds(error_of(deck({{16, "  relaxation_iterations: many"}})),
                {"deck.yaml:16:", "key 'numerics.relaxation_iterations'"});
+  // the tension cutoff is a floor on tension: zero or below, a finite number
+  expect_holds(
+      error_of(deck({{21, "    gamma: 1.4\n    p_min: 1.0e-3"}})),
+      {"deck.yaml:22:", "key 'materials.0.p_min'", "value 1.0e-3 is out of range [-1000, 0]"});
+  expect_holds(error_of(deck({{21, "    gamma: 1.4\n    p_min: strong"}})),
+               {"deck.yaml:22:", "key 'materials.0.p_min'"});
+  expect_holds(error_of(deck({{21, "    gamma: 1.4\n    p_min: -.inf"}})),
+               {"deck.yaml:22:", "key 'materials.0.p_min'", "expected a finite number"});
+  const mp::Scene cut = mp::read_scene(
+      mp::Deck::parse(deck({{21, "    gamma: 1.4\n    p_min: -2.5e-3"}}), "deck.yaml"));
+  EXPECT_TRUE(cut.materials[0].has_p_min);
+  EXPECT_EQ(cut.materials[0].p_min, -2.5e-3);
+  EXPECT_FALSE(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).materials[0].has_p_min);
 }
 
 TEST(Deck, YamlSyntaxError) {

@@ -134,6 +134,25 @@ TEST(Eos, IdealAndStiffenedClosedForms) {
   EXPECT_NEAR(sg.energy(rho, p), e, 1e-15);
 }
 
+// The tension cutoff floors only the pressure the hydro uses (pressure_cut); the EOS itself,
+// and so c^2, the relaxation and the thermodynamic tests, are unchanged.
+TEST(Eos, TensionCutoffFloorsOnlyTheHydroPressure) {
+  Eos w = mp::eos::make_eos(mp::eos::StiffenedGas{4.4, 6e-3});
+  EXPECT_FALSE(w.has_tension_cutoff());
+  const double rho = 0.95, e_tension = 0.00774, e_comp = 0.02;  // p = -1.4e-3, +3.8e-2 Mbar
+  const double p_t = w.pressure(rho, e_tension), p_c = w.pressure(rho, e_comp);
+  ASSERT_LT(p_t, -1e-3);
+  ASSERT_GT(p_c, 0.0);
+  EXPECT_EQ(w.pressure_cut(rho, e_tension), p_t);  // no cutoff: the EOS pressure
+  w.p_min = -5e-4;
+  EXPECT_TRUE(w.has_tension_cutoff());
+  EXPECT_EQ(w.pressure_cut(rho, e_tension), -5e-4);
+  EXPECT_EQ(w.pressure_cut(rho, e_comp), p_c);
+  EXPECT_EQ(w.pressure(rho, e_tension), p_t);
+  EXPECT_EQ(w.sound_speed2(rho, e_tension),
+            mp::eos::make_eos(mp::eos::StiffenedGas{4.4, 6e-3}).sound_speed2(rho, e_tension));
+}
+
 TEST(Eos, MieGruneisenHugoniotReproducesUsUpLine) {
   int materials = 0;
   for (const auto& name : mp::materials::material_names()) {

@@ -24,10 +24,18 @@ enum EosKind : int {
 // Smallest c^2 handed out, (cm/us)^2, wherever the analytic c^2 is not positive.
 inline constexpr Real kSoundSpeed2Floor = Real(1e-24);
 
+// `p_min` of a material with no tension cutoff: below any pressure a Real can reach.
+inline constexpr Real kNoTensionCutoff = Real(-1e30);
+
 struct Eos {
   static constexpr int max_params = 8;
   int kind = kIdealGas;
   Real params[max_params] = {};
+  // Tension cutoff (Mbar): the pressure the hydro uses never falls below p_min. A liquid that
+  // cavitates or a solid that spalls cannot carry the tension its EOS would give; the cutoff
+  // holds such a material at p_min instead (docs/numerics.md, "Tension cutoff"). The EOS
+  // itself (pressure, sound_speed2) is unchanged; only pressure_cut applies it.
+  Real p_min = kNoTensionCutoff;
 
   KOKKOS_INLINE_FUNCTION Real pressure(Real rho, Real e) const {
     switch (kind) {
@@ -43,6 +51,11 @@ struct Eos {
         return IdealGas{params[0]}.pressure(rho, e);
     }
   }
+  // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min.
+  KOKKOS_INLINE_FUNCTION Real pressure_cut(Real rho, Real e) const {
+    return mmax(pressure(rho, e), p_min);
+  }
+  bool has_tension_cutoff() const { return p_min > kNoTensionCutoff; }
   // Analytic c^2 = (dp/drho)_e + p/rho^2 (dp/de)_rho, unclamped.
   KOKKOS_INLINE_FUNCTION Real sound_speed2(Real rho, Real e) const {
     switch (kind) {

@@ -81,7 +81,7 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
   const auto eos = eos_;
   Kokkos::parallel_for(
       "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-        p(i, j, k) = eos.pressure(rho(i, j, k), e(i, j, k));
+        p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
         c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
       });
 }
@@ -161,7 +161,7 @@ Health Hydro::lagrange(Real dt) {
           const Real mass = rho(i, j, k) * vol;
           const Real v_half = vol + dv;
           const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
-          ph(i, j, k) = eos.pressure(mass / v_half, e_half);
+          ph(i, j, k) = eos.pressure_cut(mass / v_half, e_half);
         });
 
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.

@@ -275,7 +275,7 @@ void Hydro::mm_equation_of_state() const {
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
-          const Real pm = mats.eos[m.m].pressure(*m.rho, *m.e);
+          const Real pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
           const Real cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
           *m.p = pm;
           psum += m.alpha * pm;
@@ -310,7 +310,7 @@ void Hydro::mm_predictor(Real vol) {
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
           const Real e_half = pdv_energy(*m.e, *m.p, q(i, j, k), dv, mass);
-          const Real pm = mats.eos[m.m].pressure(mass / v_half, e_half);
+          const Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
           *m.ph = pm;
           sum += m.alpha * pm;
           last = pm;

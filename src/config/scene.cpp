@@ -68,7 +68,7 @@ void read_materials(const DeckNode& root, Scene& s) {
   const DeckNode list = root.child("materials");
   if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of materials");
   for (const DeckNode& m : list.items()) {
-    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma"});
+    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma", "p_min"});
     MaterialSpec spec;
     spec.name = m.get_string("name");
     for (const auto& other : s.materials)
@@ -110,6 +110,12 @@ void read_materials(const DeckNode& root, Scene& s) {
         m.fail("the " + spec.eos + " EOS needs parameter '" + k + "' under 'params'");
     if (spec.eos == "ideal_gas" && !(spec.params["gamma"] > 1))
       m.child("params").child("gamma").fail("gamma must exceed 1");
+    // Tension cutoff: the most tension (Mbar) the material carries before it cavitates or
+    // spalls; a floor on the pressure the hydro uses, so never above zero.
+    if (m.has("p_min")) {
+      spec.has_p_min = true;
+      spec.p_min = m.get_real("p_min", -1e3, 0.0);
+    }
     s.materials.push_back(spec);
   }
   if (s.materials.size() > 16)

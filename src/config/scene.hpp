@@ -18,6 +18,8 @@ struct MaterialSpec {
   double rho0 = 0;                       // reference density (0: none given)
   std::map<std::string, double> params;  // EOS parameters, library values overridden
   std::string citation;
+  bool has_p_min = false;  // tension cutoff given (materials[].p_min, Mbar, <= 0)
+  double p_min = 0;
 };
 
 struct ShapeSpec {

@@ -141,7 +141,9 @@ eos::Eos material_eos(const MaterialSpec& m) {
   d.eos = m.eos;
   d.rho0 = Real(m.rho0);
   for (const auto& [k, v] : m.params) d.params[k] = Real(v);
-  return materials::make_eos(d);
+  eos::Eos eos = materials::make_eos(d);
+  if (m.has_p_min) eos.p_min = Real(m.p_min);
+  return eos;
 }
 
 // Specific internal energy giving pressure p at density rho: every EOS here is affine in e at
@@ -196,6 +198,11 @@ std::vector<std::string> Simulation::modules() const {
     for (const auto& [k, v] : mat.params) {
       std::ostringstream os;
       os << ", " << k << "=" << v;
+      eos += os.str();
+    }
+    if (mat.has_p_min) {
+      std::ostringstream os;
+      os << "; tension cutoff p_min=" << mat.p_min;
       eos += os.str();
     }
     m.push_back(eos + ")");
