@@ -3,6 +3,7 @@
 // Materials the issue asked for but that are NOT here, because no source for their parameters
 // could be checked when the table was written (add them with a citation once checked, never from
 // memory): quartz (fused or alpha), cyclotol 77/23 (JWL products), PBX 9501 (JWL products).
+// What was found and why it was not enough is in docs/materials.md.
 #include "materials/library.hpp"
 
 #include "core/error.hpp"
@@ -97,6 +98,64 @@ const std::vector<MaterialData>& table() {
        {{"c0", 0.4029}, {"s", 1.237}, {"gamma0", 1.54}},
        "McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, Academic Press 1970, "
        "appendix: W rho0 19.224, C0 4.029 km/s, S 1.237, Gamma0 1.54"},
+
+      // ---- detonation products (JWL) -------------------------------------------------------
+      // B. M. Dobratz and P. C. Crawford, "LLNL Explosives Handbook: Properties of Chemical
+      // Explosives and Explosive Simulants", UCRL-52997 change 2 (LLNL, 1985), JWL products
+      // table: rho0, D, p_cj and A, B, R1, R2, omega, E0. The handbook itself could not be read
+      // here; the rows were read in a public MFC (MFlowCode) case-file helper, jwl_products.py,
+      // that transcribes them with the handbook as source (SI: A, B in Pa, E0 as rho0 Q in
+      // J/m^3; converted with 1 Mbar = 1e11 Pa). Each row reproduces its own tabulated CJ state
+      // through the products Hugoniot to 4-5 digits (D and p_cj within 0.03 %, checked in
+      // tests/test_eos.cpp), which a mistyped coefficient would not.
+      {"pbx9404_products",
+       "jwl",
+       // PBX 9404 (HMX 94 / NC 3 / CEF 3): rho0 1.84 g/cm^3, A 8.524e11 Pa, B 1.802e10 Pa,
+       // R1 4.60, R2 1.30, omega 0.38, E0 10.2e9 J/m^3; D 8.80 km/s, p_cj 37 GPa.
+       1.84,
+       {{"A", 8.524},
+        {"B", 0.1802},
+        {"R1", 4.60},
+        {"R2", 1.30},
+        {"omega", 0.38},
+        {"E0", 0.102},
+        {"D", 0.880},
+        {"p_cj", 0.370}},
+       "Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 (1985), JWL table, PBX 9404: "
+       "rho0 1.84, A 8.524 Mbar, B 0.1802 Mbar, R1 4.6, R2 1.3, omega 0.38, E0 0.102 Mbar, "
+       "D 0.880 cm/us, p_cj 0.37 Mbar"},
+      {"comp_b3_products",
+       "jwl",
+       // Composition B-3 (RDX 60 / TNT 40): rho0 1.717 g/cm^3, A 5.242e11 Pa, B 7.678e9 Pa,
+       // R1 4.20, R2 1.10, omega 0.34, E0 8.5e9 J/m^3; D 7.98 km/s, p_cj 29.5 GPa.
+       1.717,
+       {{"A", 5.242},
+        {"B", 0.07678},
+        {"R1", 4.20},
+        {"R2", 1.10},
+        {"omega", 0.34},
+        {"E0", 0.085},
+        {"D", 0.798},
+        {"p_cj", 0.295}},
+       "Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 (1985), JWL table, "
+       "Composition B-3: rho0 1.717, A 5.242 Mbar, B 0.07678 Mbar, R1 4.2, R2 1.1, omega 0.34, "
+       "E0 0.085 Mbar, D 0.798 cm/us, p_cj 0.295 Mbar"},
+      {"petn_products",
+       "jwl",
+       // PETN at 1.77 g/cm^3: A 6.171e11 Pa, B 1.6926e10 Pa, R1 4.40, R2 1.20, omega 0.25,
+       // E0 10.1e9 J/m^3; D 8.30 km/s, p_cj 33.5 GPa.
+       1.77,
+       {{"A", 6.171},
+        {"B", 0.16926},
+        {"R1", 4.40},
+        {"R2", 1.20},
+        {"omega", 0.25},
+        {"E0", 0.101},
+        {"D", 0.830},
+        {"p_cj", 0.335}},
+       "Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 (1985), JWL table, PETN "
+       "1.77 g/cm^3: A 6.171 Mbar, B 0.16926 Mbar, R1 4.4, R2 1.2, omega 0.25, E0 0.101 Mbar, "
+       "D 0.830 cm/us, p_cj 0.335 Mbar"},
   };
   return materials;
 }
