@@ -8,7 +8,9 @@
 #include <cstdio>
 
 #include "config/deck.hpp"
+#include "exact/isentrope_riemann.hpp"
 #include "exact/riemann.hpp"
+#include "materials/library.hpp"
 #include "support.hpp"
 
 using namespace mp;
@@ -396,6 +398,154 @@ TEST(MultiMaterial, WaterAirShockTubeMatchesExactSolution) {
   EXPECT_LT(std::abs(rx.shock - rx.shock_exact), 1 * rx.dx);
   EXPECT_LT(std::abs(es.shock - es.shock_exact), 3 * es.dx);
   EXPECT_LT(rx.l1u, es.l1u);
+}
+
+// The exact solver for an arbitrary-EOS left state (tests/exact/isentrope_riemann.hpp) against
+// the closed-form stiffened-gas one where both apply, and against itself at half the steps.
+TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
+  const eos::Eos gas = eos::make_eos(eos::IdealGas{1.4});
+  const exact::IsentropeRiemann a(gas, 1.0, 0.0, 1.0 / 0.4, 0.125, 0.0, 0.1, 1.4);
+  const exact::Riemann b({1, 0, 1}, {0.125, 0, 0.1}, 1.4, 1.4);
+  EXPECT_NEAR(a.p_star() / b.p_star(), 1.0, 1e-8);
+  EXPECT_NEAR(a.u_star() / b.u_star(), 1.0, 1e-8);
+  for (double xi : {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.7, 2.0}) {
+    const auto s = a.sample(xi);
+    const auto t = b.sample(xi);
+    EXPECT_NEAR(s.rho, t.rho, 1e-8) << xi;
+    EXPECT_NEAR(s.u, t.u, 1e-8) << xi;
+    EXPECT_NEAR(s.p, t.p, 1e-8) << xi;
+  }
+  // water (stiffened gas) into air: the isentrope stops before p = 0, p* = 4.8e-6 Mbar
+  const eos::Eos water = eos::make_eos(eos::StiffenedGas{4.4, 6e-3});
+  const double ew = (1e-2 + 4.4 * 6e-3) / 3.4;
+  const exact::IsentropeRiemann c(water, 1.0, 0.0, ew, 1e-3, 0.0, 1e-6, 1.4);
+  const exact::Riemann d({1, 0, 1e-2}, {1e-3, 0, 1e-6}, 4.4, 1.4, 6e-3, 0);
+  EXPECT_NEAR(c.p_star() / d.p_star(), 1.0, 1e-7);
+  EXPECT_NEAR(c.u_star() / d.u_star(), 1.0, 1e-7);
+  // JWL products: the table at half the number of steps gives the same star state
+  const auto* m = materials::find_material("pbx9404_products");
+  const eos::Eos jwl = materials::make_eos(*m);
+  const double e0 = m->param("E0") / m->rho0;
+  const exact::IsentropeRiemann fine(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4);
+  const exact::IsentropeRiemann half(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4, 100000);
+  EXPECT_NEAR(half.p_star() / fine.p_star(), 1.0, 1e-9);
+  EXPECT_NEAR(half.u_star() / fine.u_star(), 1.0, 1e-9);
+}
+
+namespace {
+
+// PBX 9404 products (JWL) expanding into air, configs/products_air.yaml, against the exact
+// solution: 1.5e5 pressure ratio, the products expand 16-fold.
+struct ProductsAir {
+  double p_star, u_star, rho_star, contact, shock_exact;
+  double p_air, u_mean, rho_products, interface, dx, p_min, rho_min, e_min;
+  double dm_products, dm_air;
+  bool finite;
+};
+
+ProductsAir run_products_air(const std::vector<std::string>& overrides) {
+  const Scene scene = test::load_scene("products_air.yaml", overrides);
+  auto r = test::run_scene(scene);
+  EXPECT_TRUE(r.result.ok);
+  const Mesh& m = r.sim->mesh();
+  const auto& s = r.sim->hydro().state();
+  const auto rho = test::gather(m, s.rho, Centering::Cell);
+  const auto e = test::gather(m, s.e, Centering::Cell);
+  const auto p = test::gather(m, s.p, Centering::Cell);
+  const auto u = test::gather(m, s.u, Centering::Node);
+  const auto f = test::gather(m, r.sim->hydro().materials()->fraction(0), Centering::Cell);
+  const auto* lib = materials::find_material("pbx9404_products");
+  const exact::IsentropeRiemann rs(materials::make_eos(*lib), lib->rho0, 0.0,
+                                   lib->param("E0") / lib->rho0, 1.225e-3, 0.0, 1e-6, 1.4);
+  const int nx = m.global_cells(0);
+  const double dx = m.dx(0), t = 10.0, x0 = 6.0;
+  ProductsAir w{};
+  w.p_star = rs.p_star();
+  w.u_star = rs.u_star();
+  w.rho_star = rs.rho_star_left();
+  w.contact = x0 + rs.u_star() * t;
+  w.shock_exact = x0 + rs.right_head_speed() * t;
+  w.dx = dx;
+  w.p_min = w.rho_min = w.e_min = 1e300;
+  w.finite = true;
+  const double tail = x0 + rs.left_tail_speed() * t;
+  double psum = 0, usum = 0, rsum = 0;
+  int pn = 0, un = 0, rn = 0;
+  for (int i = 0; i < nx; ++i) {
+    const double x = (i + 0.5) * dx;
+    w.interface += f[i] * dx;
+    w.p_min = std::min(w.p_min, p[i]);
+    w.rho_min = std::min(w.rho_min, rho[i]);
+    w.e_min = std::min(w.e_min, e[i]);
+    w.finite = w.finite && std::isfinite(p[i]) && std::isfinite(rho[i]) && std::isfinite(e[i]);
+    // shocked air: from 2 cells past the contact to 4 cells before the shock
+    if (f[i] == 0 && x > w.contact + 2 * dx && x < w.shock_exact - 4 * dx) {
+      psum += p[i];
+      ++pn;
+    }
+    // expanded products: from the fan tail to 2 cells before the contact
+    if (f[i] == 1 && x > tail && x < w.contact - 2 * dx) {
+      rsum += rho[i];
+      ++rn;
+    }
+  }
+  for (int i = 0; i <= nx; ++i) {
+    const double x = i * dx;
+    w.finite = w.finite && std::isfinite(u[i]);
+    if (x > tail + 2 * dx && x < w.shock_exact - 4 * dx) {
+      usum += u[i];
+      ++un;
+    }
+  }
+  w.p_air = psum / pn;
+  w.u_mean = usum / un;
+  w.rho_products = rsum / rn;
+  const auto& m0 = r.result.start.material_mass;
+  const auto& m1 = r.result.end.material_mass;
+  w.dm_products = (m1[0] - m0[0]) / m0[0];
+  w.dm_air = (m1[1] - m0[1]) / m0[1];
+  std::printf(
+      "products-air, %d cells, %ld cycles: shocked-air p %.4e vs exact %.4e (%+.1f %%), star u "
+      "%.4f vs %.4f (%+.1f %%), expanded products rho %.4f vs %.4f (%+.1f %%); interface %.3f vs "
+      "contact %.3f (%+.1f cells); min p %.2e, min rho %.2e, min e %.2e; material mass change "
+      "%.1e / %.1e\n",
+      nx, r.result.cycles, w.p_air, w.p_star, 100 * (w.p_air / w.p_star - 1), w.u_mean, w.u_star,
+      100 * (w.u_mean / w.u_star - 1), w.rho_products, w.rho_star,
+      100 * (w.rho_products / w.rho_star - 1), w.interface, w.contact,
+      (w.interface - w.contact) / dx, w.p_min, w.rho_min, w.e_min, w.dm_products, w.dm_air);
+  return w;
+}
+
+}  // namespace
+
+TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
+  const ProductsAir es = run_products_air({"numerics.closure=equal_strain"});
+  const ProductsAir nk =
+      run_products_air({"numerics.closure=equal_strain", "numerics.ke_fix=false"});
+  for (const ProductsAir* w : {&es, &nk}) {
+    const char* name = w == &es ? "KE fix on" : "KE fix off";
+    EXPECT_TRUE(w->finite) << name;
+    EXPECT_GT(w->rho_min, 0) << name;
+    EXPECT_GT(w->e_min, 0) << name;
+    EXPECT_GT(w->p_min, 0) << name;
+    EXPECT_LT(std::abs(w->dm_products), 1e-13) << name;
+    EXPECT_LT(std::abs(w->dm_air), 1e-12) << name;
+  }
+  // Star state (observed at 400 cells: KE fix on p +3.3 %, u +2.3 %; off p -5.1 %, u +0.7 %,
+  // its shocked air still short of the plateau for the energy it lost).
+  EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.05);
+  EXPECT_LT(std::abs(es.u_mean / es.u_star - 1), 0.04);
+  EXPECT_LT(std::abs(nk.p_air / nk.p_star - 1), 0.07);
+  EXPECT_LT(std::abs(nk.u_mean / nk.u_star - 1), 0.02);
+  // Known defect, bounded here (docs/numerics.md, "Products into air"): the start-up overshoot
+  // of the velocity at the rarefaction tail is damped by the remap, and the KE fix returns that
+  // loss as heat to the expanded products, which over-expand. With the KE fix the interface
+  // runs 7.3 cells ahead and the products' star density is 30 % low; without it 1.7 cells and
+  // 11.5 % (but energy is not conserved). The bounds hold these near their present values.
+  EXPECT_LT(std::abs(es.interface - es.contact), 9 * es.dx);
+  EXPECT_LT(std::abs(nk.interface - nk.contact), 3 * nk.dx);
+  EXPECT_LT(std::abs(es.rho_products / es.rho_star - 1), 0.35);
+  EXPECT_LT(std::abs(nk.rho_products / nk.rho_star - 1), 0.15);
 }
 
 namespace {
