@@ -397,6 +397,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
             nw.srho(q0 + s) = old.srho(f + s);
             nw.se(q0 + s) = old.se(f + s);
             nw.sp(q0 + s) = old.sp(f + s);
+            nw.sph(q0 + s) = old.sph(f + s);  // unread across a rebuild today; kept, not a trap
           }
           return;
         }
