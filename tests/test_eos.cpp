@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "core/error.hpp"
@@ -341,9 +342,9 @@ TEST(Eos, DeviceDispatchMatchesHost) {
 
 TEST(Materials, LibraryIsCitedAndComplete) {
   const auto names = mp::materials::material_names();
-  for (const char* required :
-       {"air", "helium", "water", "copper", "steel_4340", "aluminium_6061", "tungsten",
-        "pbx9404_products", "comp_b3_products", "petn_products"}) {
+  for (const char* required : {"air", "helium", "water", "copper", "steel_4340", "aluminium_6061",
+                               "tungsten", "pbx9404_products", "comp_b3_products", "petn_products",
+                               "quartz", "quartz_high_pressure"}) {
     EXPECT_NE(mp::materials::find_material(required), nullptr) << required;
   }
   EXPECT_EQ(mp::materials::find_material("unobtainium"), nullptr);
@@ -363,6 +364,38 @@ TEST(Materials, LibraryIsCitedAndComplete) {
   const Eos tw = mp::materials::make_eos(*w);
   EXPECT_NEAR(tw.sound_speed(w->rho0, 0.0), w->param("c0"), 1e-14);
   EXPECT_THROW(w->param("nope"), mp::InputError);
+}
+
+// The two quartz lines against points of the model Hugoniot they were fitted to (Melosh's
+// ANEOS SiO2, ststewart/aneos-fused-silica silica-Melosh2007/NEW-SESAME-HUG.TXT; file line,
+// particle velocity up and shock velocity Us in km/s), each inside its own range, and the
+// Mie-Grueneisen EOS of each entry reproducing its line's pressure (rho0 Us up) there.
+TEST(Materials, QuartzLinesFollowTheirSourceHugoniot) {
+  struct Point {
+    int line;
+    double up, us;
+  };
+  const std::vector<Point> alpha = {{15, 0.054021, 3.748387},  {40, 0.187846, 3.944777},
+                                    {60, 0.298600, 4.112040},  {85, 0.442216, 4.332246},
+                                    {110, 0.996254, 5.186843}, {118, 1.347336, 5.719301}};
+  const std::vector<Point> high = {{157, 2.001783, 5.074016}, {162, 2.414401, 5.885377},
+                                   {167, 2.828166, 6.651962}, {172, 3.245793, 7.387695},
+                                   {177, 3.668605, 8.101039}, {183, 4.183547, 8.934863}};
+  for (const auto& [name, points, tol] :
+       {std::tuple{"quartz", alpha, 0.01}, std::tuple{"quartz_high_pressure", high, 0.09}}) {
+    const auto* m = mp::materials::find_material(name);
+    ASSERT_NE(m, nullptr) << name;
+    const Eos eos = mp::materials::make_eos(*m);
+    const double c0 = m->param("c0") * 10, s = m->param("s");  // km/s
+    for (const Point& q : points) {
+      EXPECT_NEAR(c0 + s * q.up, q.us, tol) << name << " line " << q.line;
+      // the EOS on its own Hugoniot at this up: rho = rho0 Us / (Us - up), e = up^2 / 2
+      const double us = (c0 + s * q.up) / 10, up = q.up / 10;
+      const double rho = m->rho0 * us / (us - up);
+      EXPECT_NEAR(eos.pressure(rho, 0.5 * up * up) / (m->rho0 * us * up), 1.0, 1e-10)
+          << name << " line " << q.line;
+    }
+  }
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 //
 // Materials the issue asked for but that are NOT here, because no source for their parameters
 // could be checked when the table was written (add them with a citation once checked, never from
-// memory): quartz (fused or alpha), cyclotol 77/23 (JWL products), PBX 9501 (JWL products).
-// What was found and why it was not enough is in docs/materials.md.
+// memory): cyclotol 77/23 (JWL products), PBX 9501 (JWL products). What was found and why it
+// was not enough is in docs/materials.md.
 #include "materials/library.hpp"
 
 #include "core/error.hpp"
@@ -90,6 +90,36 @@ const std::vector<MaterialData>& table() {
        {{"c0", 0.4569}, {"s", 1.490}, {"gamma0", 2.17}},
        "McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, Academic Press 1970, "
        "appendix: 304 SS rho0 7.896, C0 4.569 km/s, S 1.490, Gamma0 2.17"},
+      // ---- rock (quartz: PAGOSA's perforator models the oil-bearing rock as quartz) ---------
+      // rho0 = 2.65 g/cm^3 (alpha quartz) and Gamma0 = 0.618 = alpha K0 / (rho0 Cv) from
+      // H. J. Melosh, "A hydrocode equation of state for SiO2", Meteoritics & Planetary Science
+      // 42 (2007) 2079-2098, table 3 and eq. 21 (read in the open-access copy kept in
+      // github.com/ststewart/aneos-forsterite-2019, EOS-docs/). No linear Us-up fit with a range
+      // could be read for alpha quartz, so C0 and S are this project's least-squares fits to
+      // the principal Hugoniot of Melosh's ANEOS SiO2 model, the table
+      // silica-Melosh2007/NEW-SESAME-HUG.TXT of github.com/ststewart/aneos-fused-silica
+      // (commit aab6fc9c), which Melosh compares with the measured quartz Hugoniot. Quartz
+      // changes phase on its Hugoniot (mixed-phase plateau near 21 GPa), so one line cannot
+      // cover both sides; two entries, each with its range (docs/materials.md):
+      {"quartz",
+       "mie_gruneisen",
+       // alpha-quartz branch, up 0.05-1.35 km/s (0.5-20 GPa), 104 points: C0 = 3.6574 km/s,
+       // S = 1.5313, Us within 0.008 km/s of the model.
+       2.65,
+       {{"c0", 0.36574}, {"s", 1.5313}, {"gamma0", 0.618}},
+       "rho0 2.65, Gamma0 0.618: Melosh, Meteorit. Planet. Sci. 42 (2007) 2079, table 3, eq. 21; "
+       "C0 0.36574 cm/us, S 1.5313: fit to Melosh's ANEOS SiO2 Hugoniot (ststewart/"
+       "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 0.05-1.35 km/s, 0.5-20 GPa"},
+      {"quartz_high_pressure",
+       "mie_gruneisen",
+       // high-pressure branch, up 2.0-4.27 km/s (27-99 GPa), 27 points: C0 = 1.6275 km/s,
+       // S = 1.7631, Us within 0.083 km/s of the model. C0 here is an intercept, not a sound
+       // speed: below about 20 GPa this entry is far too soft. Gamma0 is the alpha-quartz value.
+       2.65,
+       {{"c0", 0.16275}, {"s", 1.7631}, {"gamma0", 0.618}},
+       "rho0 2.65, Gamma0 0.618: Melosh, Meteorit. Planet. Sci. 42 (2007) 2079, table 3, eq. 21; "
+       "C0 0.16275 cm/us, S 1.7631: fit to Melosh's ANEOS SiO2 Hugoniot (ststewart/"
+       "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 2.0-4.27 km/s, 27-99 GPa"},
       {"tungsten",
        "mie_gruneisen",
        // McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, 1970, appendix: tungsten
