@@ -354,8 +354,11 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
     // least), so the cutoff is what holds the pressure there.
     EXPECT_GE(cut.p_min, -5e-4);
     EXPECT_GE(cut.at_cutoff, 4);
-    // The water that cannot carry the tension opens up (cavitates) in the middle.
-    EXPECT_LT(cut.rho_min, raw.rho_min);
+    // The water that cannot carry the tension opens up (cavitates) in the middle: the cutoff
+    // changes the motion, not only the pressure written out (observed 0.779 with the cutoff,
+    // 0.931-0.936 without).
+    EXPECT_LT(cut.rho_min, 0.85);
+    EXPECT_GT(raw.rho_min, 0.9);
     // Mass to round-off; the cutoff pressure does the p dV work, so total energy keeps the
     // same balance as without it (observed 2e-7 to 1.4e-6).
     for (const Spall* s : {&raw, &cut}) {
@@ -415,6 +418,18 @@ TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
     EXPECT_NEAR(s.u, t.u, 1e-8) << xi;
     EXPECT_NEAR(s.p, t.p, 1e-8) << xi;
   }
+  // Toro's 123 problem: two rarefactions, so the right-rarefaction branch is sampled too
+  const exact::IsentropeRiemann e123(gas, 1.0, -2.0, 0.4 / 0.4, 1.0, 2.0, 0.4, 1.4);
+  const exact::Riemann t123({1, -2, 0.4}, {1, 2, 0.4}, 1.4, 1.4);
+  EXPECT_NEAR(e123.p_star() / t123.p_star(), 1.0, 1e-7);
+  EXPECT_NEAR(e123.u_star(), t123.u_star(), 1e-8);
+  for (double xi : {-3.0, -2.0, -1.0, -0.2, 0.0, 0.2, 1.0, 2.0, 3.0}) {
+    const auto s = e123.sample(xi);
+    const auto t = t123.sample(xi);
+    EXPECT_NEAR(s.rho, t.rho, 1e-8) << xi;
+    EXPECT_NEAR(s.u, t.u, 1e-8) << xi;
+    EXPECT_NEAR(s.p, t.p, 1e-8) << xi;
+  }
   // water (stiffened gas) into air: the isentrope stops before p = 0, p* = 4.8e-6 Mbar
   const eos::Eos water = eos::make_eos(eos::StiffenedGas{4.4, 6e-3});
   const double ew = (1e-2 + 4.4 * 6e-3) / 3.4;
@@ -430,6 +445,15 @@ TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
   const exact::IsentropeRiemann half(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4, 100000);
   EXPECT_NEAR(half.p_star() / fine.p_star(), 1.0, 1e-9);
   EXPECT_NEAR(half.u_star() / fine.u_star(), 1.0, 1e-9);
+  // ... and lies on the closed-form JWL isentrope through the left state,
+  // p_s(V) = A exp(-R1 V) + B exp(-R2 V) + C V^-(1 + omega), V = rho0 / rho
+  const auto j = jwl.jwl();
+  const double pl = jwl.pressure(m->rho0, e0);
+  const double cc = pl - j.a * std::exp(-j.r1) - j.b * std::exp(-j.r2);  // V_L = 1
+  const double vs = m->rho0 / fine.rho_star_left();
+  const double ps =
+      j.a * std::exp(-j.r1 * vs) + j.b * std::exp(-j.r2 * vs) + cc * std::pow(vs, -(1 + j.omega));
+  EXPECT_NEAR(fine.p_star() / ps, 1.0, 1e-6);
 }
 
 namespace {
@@ -474,9 +498,12 @@ ProductsAir run_products_air(const std::vector<std::string>& overrides) {
   for (int i = 0; i < nx; ++i) {
     const double x = (i + 0.5) * dx;
     w.interface += f[i] * dx;
-    w.p_min = std::min(w.p_min, p[i]);
-    w.rho_min = std::min(w.rho_min, rho[i]);
-    w.e_min = std::min(w.e_min, e[i]);
+    // minima over the cells holding products (the untouched air would set them otherwise)
+    if (f[i] > 0) {
+      w.p_min = std::min(w.p_min, p[i]);
+      w.rho_min = std::min(w.rho_min, rho[i]);
+      w.e_min = std::min(w.e_min, e[i]);
+    }
     w.finite = w.finite && std::isfinite(p[i]) && std::isfinite(rho[i]) && std::isfinite(e[i]);
     // shocked air: from 2 cells past the contact to 4 cells before the shock
     if (f[i] == 0 && x > w.contact + 2 * dx && x < w.shock_exact - 4 * dx) {
@@ -507,7 +534,8 @@ ProductsAir run_products_air(const std::vector<std::string>& overrides) {
   std::printf(
       "products-air, %d cells, %ld cycles: shocked-air p %.4e vs exact %.4e (%+.1f %%), star u "
       "%.4f vs %.4f (%+.1f %%), expanded products rho %.4f vs %.4f (%+.1f %%); interface %.3f vs "
-      "contact %.3f (%+.1f cells); min p %.2e, min rho %.2e, min e %.2e; material mass change "
+      "contact %.3f (%+.1f cells); products cells: min p %.2e, min rho %.2e, min e %.2e; mass "
+      "change "
       "%.1e / %.1e\n",
       nx, r.result.cycles, w.p_air, w.p_star, 100 * (w.p_air / w.p_star - 1), w.u_mean, w.u_star,
       100 * (w.u_mean / w.u_star - 1), w.rho_products, w.rho_star,

@@ -51,9 +51,11 @@ struct Eos {
         return IdealGas{params[0]}.pressure(rho, e);
     }
   }
-  // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min.
+  // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min. A NaN stays NaN
+  // (the health check must still see a broken EOS state), so no mmax here.
   KOKKOS_INLINE_FUNCTION Real pressure_cut(Real rho, Real e) const {
-    return mmax(pressure(rho, e), p_min);
+    const Real p = pressure(rho, e);
+    return p < p_min ? p_min : p;
   }
   bool has_tension_cutoff() const { return p_min > kNoTensionCutoff; }
   // Analytic c^2 = (dp/drho)_e + p/rho^2 (dp/de)_rho, unclamped.

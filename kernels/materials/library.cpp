@@ -112,14 +112,14 @@ const std::vector<MaterialData>& table() {
        "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 0.05-1.35 km/s, 0.5-20 GPa"},
       {"quartz_high_pressure",
        "mie_gruneisen",
-       // high-pressure branch, up 2.0-4.27 km/s (27-99 GPa), 27 points: C0 = 1.6275 km/s,
+       // high-pressure branch, up 2.0-4.18 km/s (27-99 GPa), 27 points: C0 = 1.6275 km/s,
        // S = 1.7631, Us within 0.083 km/s of the model. C0 here is an intercept, not a sound
        // speed: below about 20 GPa this entry is far too soft. Gamma0 is the alpha-quartz value.
        2.65,
        {{"c0", 0.16275}, {"s", 1.7631}, {"gamma0", 0.618}},
        "rho0 2.65, Gamma0 0.618: Melosh, Meteorit. Planet. Sci. 42 (2007) 2079, table 3, eq. 21; "
        "C0 0.16275 cm/us, S 1.7631: fit to Melosh's ANEOS SiO2 Hugoniot (ststewart/"
-       "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 2.0-4.27 km/s, 27-99 GPa"},
+       "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 2.0-4.18 km/s, 27-99 GPa"},
       {"tungsten",
        "mie_gruneisen",
        // McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, 1970, appendix: tungsten
@@ -154,9 +154,11 @@ const std::vector<MaterialData>& table() {
        "Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 (1985), JWL table, PBX 9404: "
        "rho0 1.84, A 8.524 Mbar, B 0.1802 Mbar, R1 4.6, R2 1.3, omega 0.38, E0 0.102 Mbar, "
        "D 0.880 cm/us, p_cj 0.37 Mbar"},
-      {"comp_b3_products",
+      {"comp_b_products",
        "jwl",
-       // Composition B-3 (RDX 60 / TNT 40): rho0 1.717 g/cm^3, A 5.242e11 Pa, B 7.678e9 Pa,
+       // Composition B (RDX/TNT), the 1.717 g/cm^3 row. The transcription labels it
+       // "Composition B-3"; which grade the handbook row names could not be read, so the entry
+       // is called plain Composition B. rho0 1.717 g/cm^3, A 5.242e11 Pa, B 7.678e9 Pa,
        // R1 4.20, R2 1.10, omega 0.34, E0 8.5e9 J/m^3; D 7.98 km/s, p_cj 29.5 GPa.
        1.717,
        {{"A", 5.242},
@@ -168,7 +170,8 @@ const std::vector<MaterialData>& table() {
         {"D", 0.798},
         {"p_cj", 0.295}},
        "Dobratz & Crawford, LLNL Explosives Handbook, UCRL-52997 (1985), JWL table, "
-       "Composition B-3: rho0 1.717, A 5.242 Mbar, B 0.07678 Mbar, R1 4.2, R2 1.1, omega 0.34, "
+       "Composition B (row at 1.717 g/cm^3, labelled B-3 in the transcription): rho0 1.717, A "
+       "5.242 Mbar, B 0.07678 Mbar, R1 4.2, R2 1.1, omega 0.34, "
        "E0 0.085 Mbar, D 0.798 cm/us, p_cj 0.295 Mbar"},
       {"petn_products",
        "jwl",
