@@ -197,6 +197,26 @@ TEST(MultiMaterial, DenseAndCompactLayoutsAgree) {
 
 namespace {
 
+// A shock tube along x run to its end, with the global fields the comparisons read (x fastest):
+// cell rho, e, p, the fraction of material 0, and node u.
+struct Tube {
+  test::Ran run;
+  std::vector<double> rho, e, p, u, f0;
+};
+
+Tube run_tube(const std::string& deck, const std::vector<std::string>& overrides) {
+  Tube t{test::run_scene(test::load_scene(deck, overrides)), {}, {}, {}, {}, {}};
+  EXPECT_TRUE(t.run.result.ok);
+  const Mesh& m = t.run.sim->mesh();
+  const auto& s = t.run.sim->hydro().state();
+  t.rho = test::gather(m, s.rho, Centering::Cell);
+  t.e = test::gather(m, s.e, Centering::Cell);
+  t.p = test::gather(m, s.p, Centering::Cell);
+  t.u = test::gather(m, s.u, Centering::Node);
+  t.f0 = test::gather(m, t.run.sim->hydro().materials()->fraction(0), Centering::Cell);
+  return t;
+}
+
 // The water-air tube (configs/water_air.yaml) with one mixed-cell closure, against the exact
 // stiffened-gas / ideal-gas Riemann solution.
 struct WaterAir {
@@ -213,16 +233,10 @@ struct WaterAir {
 };
 
 WaterAir run_water_air(const std::vector<std::string>& overrides) {
-  const Scene scene = test::load_scene("water_air.yaml", overrides);
-  auto r = test::run_scene(scene);
-  EXPECT_TRUE(r.result.ok);
+  const Tube tube = run_tube("water_air.yaml", overrides);
+  const auto& r = tube.run;
   const Mesh& m = r.sim->mesh();
-  const auto& s = r.sim->hydro().state();
-  const auto rho = test::gather(m, s.rho, Centering::Cell);
-  const auto e = test::gather(m, s.e, Centering::Cell);
-  const auto p = test::gather(m, s.p, Centering::Cell);
-  const auto u = test::gather(m, s.u, Centering::Node);
-  const auto water = test::gather(m, r.sim->hydro().materials()->fraction(0), Centering::Cell);
+  const auto &rho = tube.rho, &e = tube.e, &p = tube.p, &u = tube.u, &water = tube.f0;
   // water: stiffened gas gamma 4.4, p_inf 6e-3 Mbar (library 'water_stiffened'); air: 1.4
   const double pl = 1e-2, pr = 1e-6;
   const exact::Riemann rs({1.0, 0.0, pl}, {1e-3, 0.0, pr}, 4.4, 1.4, 6e-3, 0.0);
@@ -468,16 +482,10 @@ struct ProductsAir {
 };
 
 ProductsAir run_products_air(const std::vector<std::string>& overrides) {
-  const Scene scene = test::load_scene("products_air.yaml", overrides);
-  auto r = test::run_scene(scene);
-  EXPECT_TRUE(r.result.ok);
+  const Tube tube = run_tube("products_air.yaml", overrides);
+  const auto& r = tube.run;
   const Mesh& m = r.sim->mesh();
-  const auto& s = r.sim->hydro().state();
-  const auto rho = test::gather(m, s.rho, Centering::Cell);
-  const auto e = test::gather(m, s.e, Centering::Cell);
-  const auto p = test::gather(m, s.p, Centering::Cell);
-  const auto u = test::gather(m, s.u, Centering::Node);
-  const auto f = test::gather(m, r.sim->hydro().materials()->fraction(0), Centering::Cell);
+  const auto &rho = tube.rho, &e = tube.e, &p = tube.p, &u = tube.u, &f = tube.f0;
   const auto* lib = materials::find_material("pbx9404_products");
   const exact::IsentropeRiemann rs(materials::make_eos(*lib), lib->rho0, 0.0,
                                    lib->param("E0") / lib->rho0, 1.225e-3, 0.0, 1e-6, 1.4);

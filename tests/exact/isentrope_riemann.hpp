@@ -7,15 +7,17 @@
 // written in s = ln(rho) as de/ds = p / rho, du/ds = -c, and integrated by classical RK4 from
 // rho_L down to 1e-4 rho_L (or to where p or c^2 stops being positive) on a fine table; the
 // step error is far below the tests' tolerances, and test_multimat checks the solver against
-// the closed-form one of riemann.hpp and against itself at half the number of steps. The right wave
-// curve is Toro's ideal-gas one ("Riemann Solvers and Numerical Methods for Fluid Dynamics", 3rd
-// ed., eqs. 4.6, 4.7). The star pressure solves u_L(p) = u_R(p) by bisection on the table.
+// the closed-form one of riemann.hpp and against itself at half the number of steps. The right
+// (ideal-gas) wave, its curve and its sampling, is riemann.hpp's (Toro, "Riemann Solvers and
+// Numerical Methods for Fluid Dynamics", 3rd ed., ch. 4). The star pressure solves
+// u_L(p) = u_R(p) by bisection on the table.
 #pragma once
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
 #include "eos/eos.hpp"
+#include "riemann.hpp"
 
 namespace mp::exact {
 
@@ -37,42 +39,18 @@ class IsentropeRiemann {
   double u_star() const { return us_; }
   double rho_star_left() const { return at(is_).rho; }
   double e_star_left() const { return at(is_).e; }
-  double rho_star_right() const {
-    if (ps_ > pr_) {
-      const double q = ps_ / pr_, g = (gr_ - 1) / (gr_ + 1);
-      return rr_ * (q + g) / (g * q + 1);
-    }
-    return rr_ * std::pow(ps_ / pr_, 1 / gr_);
-  }
+  double rho_star_right() const { return Riemann::side_density(right(), gr_, 0, ps_); }
   double left_head_speed() const { return ul_ - c(0); }
   double left_tail_speed() const { return us_ - at(is_).c; }
   double right_head_speed() const {
-    const double cr = std::sqrt(gr_ * pr_ / rr_);
-    if (ps_ > pr_)
-      return ur_ + cr * std::sqrt((gr_ + 1) / (2 * gr_) * ps_ / pr_ + (gr_ - 1) / (2 * gr_));
-    return ur_ + cr;
+    return ps_ > pr_ ? Riemann::shock_speed(right(), gr_, 0, cr(), +1, ps_) : ur_ + cr();
   }
 
   // The solution at similarity coordinate s = (x - x0) / t.
   EosState sample(double xi) const {
     if (xi >= us_) {
-      const double head = right_head_speed();
-      if (ps_ > pr_) {
-        if (xi < head) return {rho_star_right(), us_, ps_, ps_ / ((gr_ - 1) * rho_star_right())};
-        return {rr_, ur_, pr_, pr_ / ((gr_ - 1) * rr_)};
-      }
-      // right rarefaction (not the products-into-air case, but complete)
-      const double cr = std::sqrt(gr_ * pr_ / rr_);
-      const double cs = cr * std::pow(ps_ / pr_, (gr_ - 1) / (2 * gr_));
-      if (xi >= ur_ + cr) return {rr_, ur_, pr_, pr_ / ((gr_ - 1) * rr_)};
-      if (xi <= us_ + cs) {
-        const double r = rho_star_right();
-        return {r, us_, ps_, ps_ / ((gr_ - 1) * r)};
-      }
-      const double cf = 2 / (gr_ + 1) * (cr - (gr_ - 1) / 2 * (ur_ - xi));
-      const double r = rr_ * std::pow(cf / cr, 2 / (gr_ - 1));
-      const double p = pr_ * std::pow(cf / cr, 2 * gr_ / (gr_ - 1));
-      return {r, 2 / (gr_ + 1) * (-cr + (gr_ - 1) / 2 * ur_ + xi), p, p / ((gr_ - 1) * r)};
+      const Primitive q = Riemann::sample_side(xi, right(), gr_, 0, cr(), +1, ps_, us_);
+      return {q.rho, q.u, q.p, q.p / ((gr_ - 1) * q.rho)};
     }
     if (xi <= left_head_speed()) return state(0);
     if (xi >= left_tail_speed()) return plain(at(is_));
@@ -145,14 +123,14 @@ class IsentropeRiemann {
     }
   }
 
-  // Velocity behind the right wave for star pressure p (Toro 4.6-4.7, ideal gas).
+  // The right (ideal-gas) side's state and sound speed, and the velocity behind its wave for
+  // star pressure p: riemann.hpp's wave curve with p_inf = 0.
+  Primitive right() const { return {rr_, ur_, pr_}; }
+  double cr() const { return std::sqrt(gr_ * pr_ / rr_); }
   double right_u(double p) const {
-    const double cr = std::sqrt(gr_ * pr_ / rr_);
-    if (p > pr_) {
-      const double a = 2 / ((gr_ + 1) * rr_), b = (gr_ - 1) / (gr_ + 1) * pr_;
-      return ur_ + (p - pr_) * std::sqrt(a / (p + b));
-    }
-    return ur_ + 2 * cr / (gr_ - 1) * (std::pow(p / pr_, (gr_ - 1) / (2 * gr_)) - 1);
+    double f, df;
+    Riemann::wave(p, right(), gr_, 0, cr(), f, df);
+    return ur_ + f;
   }
 
   void solve() {

@@ -37,10 +37,10 @@ class Riemann {
   double rho_star_right() const { return side_density(r_, gr_, pr_, ps_); }
   // Speeds of the head of the left wave (shock or rarefaction head) etc.
   double left_head_speed() const {
-    return ps_ > l_.p ? shock_speed(l_, gl_, pl_, cl_, -1) : l_.u - cl_;
+    return ps_ > l_.p ? shock_speed(l_, gl_, pl_, cl_, -1, ps_) : l_.u - cl_;
   }
   double right_head_speed() const {
-    return ps_ > r_.p ? shock_speed(r_, gr_, pr_, cr_, +1) : r_.u + cr_;
+    return ps_ > r_.p ? shock_speed(r_, gr_, pr_, cr_, +1, ps_) : r_.u + cr_;
   }
   double left_tail_speed() const {
     return ps_ > l_.p ? left_head_speed() : us_ - std::sqrt(gl_ * (ps_ + pl_) / rho_star_left());
@@ -51,11 +51,13 @@ class Riemann {
 
   // The solution at similarity coordinate s = (x - x0) / t.
   Primitive sample(double s) const {
-    if (s < us_) return sample_side(s, l_, gl_, pl_, cl_, -1);
-    return sample_side(s, r_, gr_, pr_, cr_, +1);
+    if (s < us_) return sample_side(s, l_, gl_, pl_, cl_, -1, ps_, us_);
+    return sample_side(s, r_, gr_, pr_, cr_, +1, ps_, us_);
   }
 
- private:
+  // One side's wave, given the star pressure ps and velocity us (also used by
+  // isentrope_riemann.hpp for its ideal-gas side). k: the side's state, g its gamma, pinf its
+  // p_inf, c its sound speed, dir = -1 for the left side, +1 for the right.
   // f_K(p) and its derivative (Toro eqs. 4.6, 4.7, with p -> p + p_inf).
   static void wave(double p, const Primitive& k, double g, double pinf, double c, double& f,
                    double& df) {
@@ -72,6 +74,7 @@ class Riemann {
     }
   }
 
+ private:
   void solve() {
     const double du = r_.u - l_.u;
     // Start from the two-rarefaction guess, which is exact for two ideal-gas rarefactions of
@@ -106,6 +109,7 @@ class Riemann {
     us_ = 0.5 * (l_.u + r_.u) + 0.5 * (fr - fl);
   }
 
+ public:
   static double side_density(const Primitive& k, double g, double pinf, double p) {
     const double ratio = (p + pinf) / (k.p + pinf);
     if (p > k.p) {
@@ -115,25 +119,25 @@ class Riemann {
     return k.rho * std::pow(ratio, 1 / g);
   }
 
-  double shock_speed(const Primitive& k, double g, double pinf, double c, int dir) const {
-    const double ratio = (ps_ + pinf) / (k.p + pinf);
+  static double shock_speed(const Primitive& k, double g, double pinf, double c, int dir,
+                            double ps) {
+    const double ratio = (ps + pinf) / (k.p + pinf);
     return k.u + dir * c * std::sqrt((g + 1) / (2 * g) * ratio + (g - 1) / (2 * g));
   }
 
-  // dir = -1 for the left side, +1 for the right.
-  Primitive sample_side(double s, const Primitive& k, double g, double pinf, double c,
-                        int dir) const {
-    const double rho_star = side_density(k, g, pinf, ps_);
-    if (ps_ > k.p) {  // shock
-      const double sk = shock_speed(k, g, pinf, c, dir);
+  static Primitive sample_side(double s, const Primitive& k, double g, double pinf, double c,
+                               int dir, double ps, double us) {
+    const double rho_star = side_density(k, g, pinf, ps);
+    if (ps > k.p) {  // shock
+      const double sk = shock_speed(k, g, pinf, c, dir, ps);
       if ((dir < 0 && s < sk) || (dir > 0 && s > sk)) return k;
-      return {rho_star, us_, ps_};
+      return {rho_star, us, ps};
     }
     const double head = k.u + dir * c;
-    const double c_star = c * std::pow((ps_ + pinf) / (k.p + pinf), (g - 1) / (2 * g));
-    const double tail = us_ + dir * c_star;
+    const double c_star = c * std::pow((ps + pinf) / (k.p + pinf), (g - 1) / (2 * g));
+    const double tail = us + dir * c_star;
     if ((dir < 0 && s < head) || (dir > 0 && s > head)) return k;
-    if ((dir < 0 && s > tail) || (dir > 0 && s < tail)) return {rho_star, us_, ps_};
+    if ((dir < 0 && s > tail) || (dir > 0 && s < tail)) return {rho_star, us, ps};
     // inside the fan (Toro eq. 4.56 / 4.63, in pbar)
     const double a = 2 / (g + 1), b = (g - 1) / ((g + 1) * c);
     const double rho = k.rho * std::pow(a - dir * b * (k.u - s), 2 / (g - 1));
@@ -142,6 +146,7 @@ class Riemann {
     return {rho, u, p};
   }
 
+ private:
   Primitive l_, r_;
   double gl_, gr_, pl_, pr_, cl_, cr_;
   double ps_ = 0, us_ = 0;
