@@ -53,7 +53,7 @@ inline CycleTimes run_cycles(hydro::Hydro& h, RunClock& clock, int warmup, int c
     if (cyc == warmup) faults = minor_faults();
     const auto t0 = now();
     auto tp = now();
-    const auto ts = h.time_step(dt_old, Real(t), Real(1e9));
+    const auto ts = h.time_step(dt_old, double(t), 1e9);
     Kokkos::fence();
     if (timed) ct.phase[0] += since(tp);
     tp = now();

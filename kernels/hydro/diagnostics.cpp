@@ -15,7 +15,7 @@ MPI_Datatype mpi_real() {
 }
 }  // namespace
 
-TimeStep Hydro::time_step(Real dt_old, Real t, Real t_end) const {
+TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   const Geometry g = mesh_.geometry();
   auto c = s_.c, q = s_.q, rho = s_.rho, u = s_.u, v = s_.v, w = s_.w;
   const Real cfl = opt_.cfl;
@@ -75,8 +75,10 @@ TimeStep Hydro::time_step(Real dt_old, Real t, Real t_end) const {
     ts.dt = opt_.dt_max;
     ts.limit = "max";
   }
-  if (t + ts.dt > t_end) {
-    ts.dt = t_end - t;
+  // The clock is double whatever Real is: in a float build, rounding t to float could make
+  // the remaining time zero (or negative) and stall the run one step short of the end.
+  if (t + double(ts.dt) > t_end) {
+    ts.dt = Real(t_end - t);
     ts.limit = "end";
   }
   return ts;

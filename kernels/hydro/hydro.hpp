@@ -2,7 +2,9 @@
 // directionally split remap back to the fixed mesh (DESIGN.md §4). Cell-averaged fields live
 // here; per-material state plugs in beside them (the multi-material layouts).
 #pragma once
+#include <algorithm>
 #include <array>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -30,6 +32,18 @@ KOKKOS_INLINE_FUNCTION Real corner_sum(const Field3& f, int i, int j, int k) {
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) sum += f(i + a, j + b, k + c);
   return sum;
+}
+
+// The smallest volume fraction a material may hold beside others: 4 ulps of 1 in Real. Below
+// it the largest material's fraction 1 - f rounds to 1 (in float from f < 6e-8), so a cell
+// would read as pure in the dense layout (alpha == 1) and mixed in the compact one, and its
+// volume would not sum to the cell's. 8.9e-16 in double builds (below the 1e-14 default), 4.8e-7
+// in float builds.
+constexpr double kMinFractionFloor = 4.0 * double(std::numeric_limits<Real>::epsilon());
+
+// The min_fraction a run uses: the deck's, raised to the floor above.
+inline double effective_min_fraction(double requested) {
+  return std::max(requested, kMinFractionFloor);
 }
 
 struct Options {
@@ -115,7 +129,7 @@ class Hydro {
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
-  TimeStep time_step(Real dt_old, Real t, Real t_end) const;
+  TimeStep time_step(Real dt_old, double t, double t_end) const;
   // One full cycle: Lagrangian step then remap; `cycle` sets the sweep order. Returns the
   // health of the Lagrangian volumes (a run stops when they collapse).
   Health step(Real dt, long cycle);

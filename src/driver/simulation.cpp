@@ -176,7 +176,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.interface = scene_.numerics.interface == "youngs" ? 0
                   : scene_.numerics.interface == "slic" ? 1
                                                         : 2;
-  opt.min_fraction = Real(scene_.numerics.min_fraction);
+  opt.min_fraction = Real(hydro::effective_min_fraction(scene_.numerics.min_fraction));
   opt.relax = scene_.numerics.closure == "relaxation";
   opt.relax_iterations = scene_.numerics.relaxation_iterations;
   std::vector<eos::Eos> eos;
@@ -221,7 +221,11 @@ std::vector<std::string> Simulation::modules() const {
        << ", interface reconstruction "
        << (scene_.numerics.interface == "youngs" ? "Youngs PLIC (onion skin)"
                                                  : scene_.numerics.interface)
-       << ", min fraction " << scene_.numerics.min_fraction;
+       << ", min fraction " << hydro::effective_min_fraction(scene_.numerics.min_fraction);
+    if (hydro::effective_min_fraction(scene_.numerics.min_fraction) > scene_.numerics.min_fraction)
+      os << " (the deck's " << scene_.numerics.min_fraction
+         << " raised to 4 ulps of 1 in this build's " << (sizeof(Real) == 4 ? "float" : "double")
+         << " fields)";
     m.push_back(os.str());
   }
   return m;
@@ -271,7 +275,7 @@ void Simulation::initialize() {
         mm->nmat(),
         samples,
         g,
-        scene_.numerics.min_fraction,
+        hydro::effective_min_fraction(scene_.numerics.min_fraction),
         {ng, ng, ng},
         {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)}};
     mm->assign("init::materials", src);
@@ -391,13 +395,14 @@ RunResult Simulation::run() {
   if (write && writer_) r.files.push_back(write_dump(t, cycle));
   hydro::Health h;
   while (t < t_end * (1 - 1e-12) && cycle < scene_.time.max_cycles) {
-    hydro::TimeStep ts = hydro_->time_step(dt_old, Real(t), Real(t_end));
+    hydro::TimeStep ts = hydro_->time_step(dt_old, t, t_end);
     if (cycle == 0 && ts.dt > Real(scene_.time.dt_initial)) {
       ts.dt = Real(scene_.time.dt_initial);
       ts.limit = "initial";
     }
     h = hydro_->step(ts.dt, cycle);
-    t += double(ts.dt);
+    // the last step lands on the end time exactly (Real(t_end - t) is rounded in float builds)
+    t = ts.limit == "end" ? t_end : t + double(ts.dt);
     ++cycle;
     dt_old = ts.dt;
     if (!h.ok) break;
