@@ -9,4 +9,12 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "${build}"
 # Tests declare how many ranks they use (PROCESSORS); ctest packs them onto the cores.
 ctest --output-on-failure -j "$(nproc)" --timeout 900
+# The same suite in a single-precision build (tolerances per precision: tests/precision.hpp),
+# so that the float build the README offers keeps building and passing.
+# MINIPAGOSA_SKIP_FLOAT=1 skips it.
+if [ "${MINIPAGOSA_SKIP_FLOAT:-0}" != 1 ]; then
+  MINIPAGOSA_BUILD_DIR="${build}-float" bash "${here}/ci/build.sh" -DMINIPAGOSA_PRECISION=float
+  cd "${build}-float"
+  ctest --output-on-failure -j "$(nproc)" --timeout 900
+fi
 echo "[test] suite finished in $(( $(date +%s) - start )) s (setup + build + tests)"

@@ -9,6 +9,7 @@
 
 #include "config/scene.hpp"
 #include "driver/simulation.hpp"
+#include "precision.hpp"
 
 namespace mp::test {
 

@@ -15,25 +15,37 @@
 #include "eos/eos.hpp"
 #include "hydro/relax.hpp"
 #include "materials/library.hpp"
+#include "precision.hpp"
 
 namespace {
 
 using mp::Real;
 using mp::eos::Eos;
 
+using mp::test::by_precision;
+using mp::test::roundoff;
+
 // Relative tolerance of the analytic c^2 against a centred difference of p along the isentrope
-// de = p/rho^2 drho with step h = 1e-4 rho (truncation O(h^2) ~ 1e-8, round-off ~ 1e-12 relative).
-constexpr double kC2Tol = 1e-6;
-constexpr double kStep = 1e-4;
+// de = p/rho^2 drho with step h = 1e-4 rho in double (truncation O(h^2) ~ 1e-8, round-off
+// ~ 1e-12 relative). A float build evaluates p to 6e-8, so it takes h = 3e-3 rho (gases and
+// products: up to 3.6e-5 observed), or half the distance to a solid's branch switch at rho0
+// (1e-3 rho0 away in the table below, where Gamma rho e of up to 1.8 Mbar against the small
+// step leaves up to 8.2e-4 observed, quartz_high_pressure).
+const double kC2Tol = by_precision(1e-6, 1.5e-3);
+const double kStep = by_precision(1e-4, 3e-3);
 
 // One atmosphere in Mbar.
 constexpr double kAtm = 1.01325e-6;
 
-double isentropic_c2(const Eos& eos, double rho, double e) {
+// kink: the density where a solid's EOS switches branch (rho0), which the difference must not
+// straddle (only the float step can reach it from the states below)
+double isentropic_c2(const Eos& eos, double rho, double e, double kink) {
   const double p = eos.pressure(rho, e);
-  const double h = kStep * rho;
+  const double h = std::min(kStep * rho, 0.5 * std::abs(rho - kink));
   const double de = p / (rho * rho) * h;
-  return (eos.pressure(rho + h, e + de) - eos.pressure(rho - h, e - de)) / (2 * h);
+  // difference the states the EOS evaluates (rounded to Real)
+  const double rp = Real(rho + h), rm = Real(rho - h);
+  return (eos.pressure(rp, e + de) - eos.pressure(rm, e - de)) / (rp - rm);
 }
 
 struct Case {
@@ -42,6 +54,7 @@ struct Case {
   double rho0;
   std::vector<double> x;  // rho / rho0
   std::vector<double> e;  // cm^2/us^2
+  double kink = 0;        // branch switch of a solid's EOS (rho0), 0 for none
 };
 
 // Polynomial fixture, not a library material: the coefficients are the mu-expansion of the
@@ -50,7 +63,8 @@ struct Case {
 mp::eos::Polynomial polynomial_fixture() {
   const double rho0 = 2.703, c0 = 0.524, s = 1.40, g0 = 1.97;
   const double a1 = rho0 * c0 * c0;
-  return {rho0, a1, a1 * (2 * s - 1), a1 * (s - 1) * (3 * s - 1), g0, g0};
+  return {Real(rho0), Real(a1), Real(a1 * (2 * s - 1)), Real(a1 * (s - 1) * (3 * s - 1)),
+          Real(g0),   Real(g0)};
 }
 
 // JWL fixture, not a material: magnitudes typical of HMX-based products, used to test the JWL
@@ -91,11 +105,13 @@ std::vector<Case> consistency_cases() {
     } else {
       c.x = kSolidX;
       c.e = kSolidE;
+      c.kink = m->rho0;
     }
     cases.push_back(c);
   }
   const auto poly = polynomial_fixture();
-  cases.push_back({"polynomial fixture", mp::eos::make_eos(poly), poly.rho0, kSolidX, kSolidE});
+  cases.push_back(
+      {"polynomial fixture", mp::eos::make_eos(poly), poly.rho0, kSolidX, kSolidE, poly.rho0});
   const auto jwl = jwl_fixture();
   const double e0 = kJwlFixtureE0 / jwl.rho0;
   cases.push_back({"jwl fixture",
@@ -114,13 +130,13 @@ TEST(Eos, SoundSpeedMatchesIsentropicDifference) {
       for (double e : c.e) {
         const double rho = x * c.rho0;
         const double c2 = c.eos.sound_speed2(rho, e);
-        const double fd = isentropic_c2(c.eos, rho, e);
+        const double fd = isentropic_c2(c.eos, rho, e, c.kink);
         ASSERT_TRUE(std::isfinite(c2) && std::isfinite(fd)) << c.name << " x=" << x << " e=" << e;
         ASSERT_GT(c2, 0.0) << c.name << " x=" << x << " e=" << e;
         EXPECT_NEAR(fd / c2, 1.0, kC2Tol) << c.name << " x=" << x << " e=" << e;
         worst = std::max(worst, std::abs(fd / c2 - 1.0));
         const double cs = c.eos.sound_speed(rho, e);
-        EXPECT_DOUBLE_EQ(cs * cs, c2) << c.name;
+        EXPECT_NEAR(cs * cs / c2, 1.0, roundoff(8.9e-16)) << c.name;  // 4 ulps
         ++checked;
       }
     }
@@ -131,14 +147,14 @@ TEST(Eos, SoundSpeedMatchesIsentropicDifference) {
 
 TEST(Eos, IdealAndStiffenedClosedForms) {
   const Eos air = mp::eos::make_eos(mp::eos::IdealGas{1.4});
-  EXPECT_DOUBLE_EQ(air.pressure(1e-3, 2.0), 0.4 * 1e-3 * 2.0);
-  EXPECT_NEAR(air.sound_speed2(1e-3, 2.0), 1.4 * 0.4 * 2.0, 1e-15);
+  EXPECT_NEAR(air.pressure(1e-3, 2.0) / (0.4 * 1e-3 * 2.0), 1.0, roundoff(8.9e-16));
+  EXPECT_NEAR(air.sound_speed2(1e-3, 2.0), 1.4 * 0.4 * 2.0, roundoff(1e-15));
   const mp::eos::StiffenedGas sg{4.4, 6e-3};
   const Eos w = mp::eos::make_eos(sg);
   const double rho = 1.1, e = 0.02;
   const double p = w.pressure(rho, e);
-  EXPECT_NEAR(w.sound_speed2(rho, e), 4.4 * (p + 6e-3) / rho, 1e-14);
-  EXPECT_NEAR(sg.energy(rho, p), e, 1e-15);
+  EXPECT_NEAR(w.sound_speed2(rho, e), 4.4 * (p + 6e-3) / rho, roundoff(1e-14));
+  EXPECT_NEAR(sg.energy(rho, p), e, roundoff(1e-15));
 }
 
 // The tension cutoff floors only the pressure the hydro uses (pressure_cut); the EOS itself,
@@ -171,13 +187,13 @@ TEST(Eos, MieGruneisenHugoniotReproducesUsUpLine) {
     ++materials;
     const Eos eos = mp::materials::make_eos(*m);
     const double rho0 = m->rho0, c0 = m->param("c0"), s = m->param("s");
-    EXPECT_NEAR(eos.pressure(rho0, 0.0), 0.0, 1e-15) << name;
+    EXPECT_NEAR(eos.pressure(rho0, 0.0), 0.0, roundoff(1e-15)) << name;
     for (double up : {0.001, 0.01, 0.03, 0.1, 0.2, 0.4}) {  // cm/us, 10 m/s .. 4 km/s
       const double us = c0 + s * up;
       const double rho = rho0 * us / (us - up);
       const double ph = rho0 * us * up;
       const double eh = 0.5 * up * up;
-      EXPECT_NEAR(eos.pressure(rho, eh), ph, 1e-12 * ph) << name << " up=" << up;
+      EXPECT_NEAR(eos.pressure(rho, eh), ph, roundoff(1e-12) * ph) << name << " up=" << up;
     }
   }
   EXPECT_GE(materials, 5);
@@ -188,11 +204,16 @@ TEST(Eos, MieGruneisenBranchesAreContinuousAtRho0) {
   ASSERT_NE(cu, nullptr);
   const Eos eos = mp::materials::make_eos(*cu);
   for (double e : {0.0, 0.01, 0.1}) {
-    const double lo = cu->rho0 * (1 - 1e-9), hi = cu->rho0 * (1 + 1e-9);
-    // p changes by (dp/drho)_e drho = c0^2 drho across the 2e-9 rho0 gap; nothing more.
+    // a gap of 2e-9 rho0 in double; float cannot hold it, so 2e-4 rho0 there, where the
+    // branches' own curvature and the float round-off of p (Gamma rho e up to 1.8 Mbar against
+    // a 3e-4 Mbar jump) set the bounds
+    const double gap = by_precision(1e-9, 1e-4);
+    const double lo = double(Real(cu->rho0 * (1 - gap))), hi = double(Real(cu->rho0 * (1 + gap)));
+    // p changes by (dp/drho)_e drho = c0^2 drho across the gap; nothing more.
     const double c02 = cu->param("c0") * cu->param("c0");
-    EXPECT_NEAR((eos.pressure(hi, e) - eos.pressure(lo, e)) / (c02 * (hi - lo)), 1.0, 1e-5);
-    EXPECT_NEAR(eos.sound_speed2(lo, e) / eos.sound_speed2(hi, e), 1.0, 1e-8);
+    EXPECT_NEAR((eos.pressure(hi, e) - eos.pressure(lo, e)) / (c02 * (hi - lo)), 1.0,
+                by_precision(1e-5, 3e-3));
+    EXPECT_NEAR(eos.sound_speed2(lo, e) / eos.sound_speed2(hi, e), 1.0, by_precision(1e-8, 2e-3));
   }
 }
 
@@ -207,18 +228,20 @@ TEST(Eos, JwlCjStateFromTangencyIsSonic) {
   EXPECT_GT(cj.rho, j.rho0);
   EXPECT_GT(cj.d, 0.5);
   EXPECT_LT(cj.d, 1.2);
-  // On the EOS, on the Rayleigh line and on the Hugoniot.
-  EXPECT_NEAR(eos.pressure(cj.rho, cj.e), cj.p, 1e-10 * cj.p);
-  EXPECT_NEAR(cj.p, j.rho0 * cj.d * cj.u, 1e-10 * cj.p);
-  EXPECT_NEAR(cj.u, cj.d * (1 - j.rho0 / cj.rho), 1e-12);
-  // CJ sound condition from the analytic c: c_cj + u_cj = D.
-  EXPECT_NEAR((eos.sound_speed(cj.rho, cj.e) + cj.u) / cj.d, 1.0, 1e-6);
+  // On the EOS, on the Rayleigh line and on the Hugoniot (float: observed 1.6e-7 and 4.5e-8).
+  EXPECT_NEAR(eos.pressure(cj.rho, cj.e), cj.p, by_precision(1e-10, 1e-6) * cj.p);
+  EXPECT_NEAR(cj.p, j.rho0 * cj.d * cj.u, by_precision(1e-10, 1e-6) * cj.p);
+  EXPECT_NEAR(cj.u, cj.d * (1 - j.rho0 / cj.rho), by_precision(1e-12, 1e-6));
+  // CJ sound condition from the analytic c: c_cj + u_cj = D. The tangency is a double root,
+  // so float's 6e-8 in p moves it by about sqrt(6e-8) (observed 3.7e-5).
+  const double kSonicTol = by_precision(1e-6, 2e-4);
+  EXPECT_NEAR((eos.sound_speed(cj.rho, cj.e) + cj.u) / cj.d, 1.0, kSonicTol);
 
   // The handbook route (tabulated D and p_cj) lands on the same state.
   const auto tab = mp::eos::jwl_cj_from_tabulated(j, e0, cj.d, cj.p);
   EXPECT_NEAR(tab.rho / cj.rho, 1.0, 1e-9);
   EXPECT_NEAR(eos.pressure(tab.rho, tab.e) / cj.p, 1.0, 1e-8);
-  EXPECT_NEAR((eos.sound_speed(tab.rho, tab.e) + tab.u) / cj.d, 1.0, 1e-6);
+  EXPECT_NEAR((eos.sound_speed(tab.rho, tab.e) + tab.u) / cj.d, 1.0, kSonicTol);
 }
 
 // Every cited JWL explosive in the library reproduces its tabulated CJ state: the jump
@@ -361,11 +384,12 @@ TEST(Materials, LibraryIsCitedAndComplete) {
   // A gas at its reference density and the energy of 1 atm gives 1 atm back.
   const auto* air = mp::materials::find_material("air");
   const Eos a = mp::materials::make_eos(*air);
-  EXPECT_NEAR(a.pressure(air->rho0, kAtm / (0.4 * air->rho0)), kAtm, 1e-18);
+  EXPECT_NEAR(a.pressure(air->rho0, kAtm / (0.4 * air->rho0)), kAtm,
+              by_precision(1e-18, 2.3e-13));  // float: 2 ulps of 1e-6
   // Ambient solids: p = 0 at rho0, e = 0, and c = c0 there.
   const auto* w = mp::materials::find_material("tungsten");
   const Eos tw = mp::materials::make_eos(*w);
-  EXPECT_NEAR(tw.sound_speed(w->rho0, 0.0), w->param("c0"), 1e-14);
+  EXPECT_NEAR(tw.sound_speed(w->rho0, 0.0), w->param("c0"), roundoff(1e-14));
   EXPECT_THROW(w->param("nope"), mp::InputError);
 }
 
@@ -454,9 +478,9 @@ TEST(Relaxation, EqualisesPressureAcrossEosKindsConservingVolumeAndEnergy) {
   for (const Case& c : cases) {
     const Eos eos[2] = {c.a, c.b};
     const int id[2] = {0, 1};
-    Real vol[2] = {c.alpha_a, 1 - c.alpha_a};
-    const Real mass[2] = {c.rho_a * vol[0], c.rho_b * vol[1]};
-    Real e[2] = {energy(c.a, c.rho_a, c.p_a), energy(c.b, c.rho_b, c.p_b)};
+    Real vol[2] = {Real(c.alpha_a), Real(1 - c.alpha_a)};
+    const Real mass[2] = {Real(c.rho_a * vol[0]), Real(c.rho_b * vol[1])};
+    Real e[2] = {Real(energy(c.a, c.rho_a, c.p_a)), Real(energy(c.b, c.rho_b, c.p_b))};
     const Real p0[2] = {c.a.pressure(c.rho_a, e[0]), c.b.pressure(c.rho_b, e[1])};
     const Real energy0 = mass[0] * e[0] + mass[1] * e[1];
     Real p[2];
@@ -471,13 +495,26 @@ TEST(Relaxation, EqualisesPressureAcrossEosKindsConservingVolumeAndEnergy) {
       EXPECT_EQ(mass[0] * e[0] + mass[1] * e[1], energy0) << c.name;
       continue;
     }
-    EXPECT_LE(r.spread, 1e-10) << c.name;
-    EXPECT_LE(r.iterations, 60) << c.name;
+    // A float build resolves a material's pressure only to about eps rho c^2 (1.7e-7 Mbar for
+    // copper), far above a 1e-10 relative spread at 1e-6 Mbar: there the solver runs to its
+    // cap, and the agreement below is checked against that resolution instead.
+    if (!mp::test::kFloat) {
+      EXPECT_LE(r.spread, 1e-10) << c.name;
+      EXPECT_LE(r.iterations, 60) << c.name;
+    }
     // the pressures from the final states, independently of the function's own report
     const Real q0 = c.a.pressure(mass[0] / vol[0], e[0]), q1 = c.b.pressure(mass[1] / vol[1], e[1]);
-    EXPECT_LE(std::abs(q0 - q1), 1e-9 * std::max(std::abs(p0[0]), std::abs(p0[1]))) << c.name;
-    EXPECT_NEAR(vol[0] + vol[1], 1.0, 1e-15) << c.name;
-    EXPECT_NEAR(mass[0] * e[0] + mass[1] * e[1], energy0, 1e-13 * std::abs(energy0) + 1e-300)
+    double stiff = 0;  // largest rho c^2 of the final states
+    for (int s = 0; s < 2; ++s)
+      stiff =
+          std::max(stiff, double(eos[s].sound_speed2(mass[s] / vol[s], e[s])) * mass[s] / vol[s]);
+    // float: observed up to 1.5 eps rho c^2 (polynomial | tungsten)
+    EXPECT_LE(std::abs(q0 - q1), by_precision(1e-9 * std::max(std::abs(p0[0]), std::abs(p0[1])),
+                                              8 * mp::test::kEps * stiff))
+        << c.name;
+    EXPECT_NEAR(vol[0] + vol[1], 1.0, roundoff(1e-15)) << c.name;
+    EXPECT_NEAR(mass[0] * e[0] + mass[1] * e[1], energy0,
+                roundoff(1e-13) * std::abs(energy0) + 1e-300)
         << c.name;
     for (int s = 0; s < 2; ++s) {
       EXPECT_GT(vol[s], 0) << c.name;

@@ -135,10 +135,11 @@ TEST(MultiMaterial, SphereAdvectionYoungsBeatsSlicAndConverges) {
       v0 += f0[i] * cell;
       v1 += f1[i] * cell;
     }
-    EXPECT_NEAR(v1, v0, 1e-13) << "ball volume conserved";
+    EXPECT_NEAR(v1, v0, test::roundoff(1e-13)) << "ball volume conserved";
     const auto& mm0 = r.result.start.material_mass;
     const auto& mm1 = r.result.end.material_mass;
-    for (std::size_t q = 0; q < mm0.size(); ++q) EXPECT_NEAR(mm1[q] / mm0[q], 1.0, 1e-13);
+    for (std::size_t q = 0; q < mm0.size(); ++q)
+      EXPECT_NEAR(mm1[q] / mm0[q], 1.0, test::roundoff(1e-13));
     return err / v0;  // relative to the sphere's volume
   };
   const double y16 = shape_error(16, "youngs"), y32 = shape_error(32, "youngs");
@@ -163,9 +164,9 @@ TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
   ASSERT_EQ(a.size(), 3u);
   // exact initial masses: driver 1 x 3 x 0.1 x 1.0, heavy 6 x 1.5 x 0.1 x 1.0, light 6 x 1.5 x 0.1
   // x 0.125
-  EXPECT_NEAR(a[0], 0.3, 1e-13);
-  EXPECT_NEAR(a[1], 0.9, 1e-13);
-  EXPECT_NEAR(a[2], 0.1125, 1e-13);
+  EXPECT_NEAR(a[0], 0.3, test::roundoff(1e-13));
+  EXPECT_NEAR(a[1], 0.9, test::roundoff(1e-13));
+  EXPECT_NEAR(a[2], 0.1125, test::roundoff(1e-13));
   double worst = 0;
   for (int q = 0; q < 3; ++q) {
     const double rel = std::abs(b[q] - a[q]) / a[q];
@@ -173,7 +174,7 @@ TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
     // The fields do not depend on the thread count (checked bitwise), but the two mass sums
     // over 4200 cells do: each carries reduction round-off up to ~N eps = 4200 x 1.1e-16 =
     // 4.7e-13 in the worst case (observed 4e-15 to 5e-14 with 2 and 1 threads).
-    EXPECT_LT(rel, 2e-13) << scene.materials[q].name;
+    EXPECT_LT(rel, test::roundoff(2e-13)) << scene.materials[q].name;
   }
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
   std::printf(
@@ -342,7 +343,8 @@ Spall run_spall(bool single, const std::string& p_min) {
   const auto p = test::gather(m, r.sim->hydro().state().p, Centering::Cell);
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
   Spall sp{1e300, 1e300, 0, 0, 0};
-  const double cut = p_min.empty() ? -1e300 : std::stod(p_min);
+  // the cutoff as the fields hold it (-5e-4 is -5.00000024e-4 in float)
+  const double cut = p_min.empty() ? -1e300 : double(Real(std::stod(p_min)));
   for (std::size_t i = 0; i < p.size(); ++i) {
     sp.p_min = std::min(sp.p_min, p[i]);
     if (rho[i] > 0.5) sp.rho_min = std::min(sp.rho_min, rho[i]);  // water cells
@@ -366,7 +368,7 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
     EXPECT_LT(raw.p_min, -1e-3);
     // With one, no cell goes below p_min and the middle sits at it (4 cells across y, z at
     // least), so the cutoff is what holds the pressure there.
-    EXPECT_GE(cut.p_min, -5e-4);
+    EXPECT_GE(cut.p_min, double(Real(-5e-4)));
     EXPECT_GE(cut.at_cutoff, 4);
     // The water that cannot carry the tension opens up (cavitates) in the middle: the cutoff
     // changes the motion, not only the pressure written out (observed 0.779 with the cutoff,
@@ -376,7 +378,7 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
     // Mass to round-off; the cutoff pressure does the p dV work, so total energy keeps the
     // same balance as without it (observed 2e-7 to 1.4e-6).
     for (const Spall* s : {&raw, &cut}) {
-      EXPECT_LT(std::abs(s->dm), 1e-13);
+      EXPECT_LT(std::abs(s->dm), test::roundoff(1e-13));
       EXPECT_LT(std::abs(s->de), 1e-5);
     }
   }
@@ -420,45 +422,49 @@ TEST(MultiMaterial, WaterAirShockTubeMatchesExactSolution) {
 // The exact solver for an arbitrary-EOS left state (tests/exact/isentrope_riemann.hpp) against
 // the closed-form stiffened-gas one where both apply, and against itself at half the steps.
 TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
+  // The isentrope solver evaluates the EOS in Real: a float build reaches about 1e-7 (observed
+  // up to 5e-8 on Sod, 1.7e-7 on 123) and, for water, the float resolution of its pressure,
+  // 3e-9 Mbar against p* = 4.8e-6 (observed 2.6e-4).
+  const double tol = test::by_precision(1e-8, 2e-7);
   const eos::Eos gas = eos::make_eos(eos::IdealGas{1.4});
   const exact::IsentropeRiemann a(gas, 1.0, 0.0, 1.0 / 0.4, 0.125, 0.0, 0.1, 1.4);
   const exact::Riemann b({1, 0, 1}, {0.125, 0, 0.1}, 1.4, 1.4);
-  EXPECT_NEAR(a.p_star() / b.p_star(), 1.0, 1e-8);
-  EXPECT_NEAR(a.u_star() / b.u_star(), 1.0, 1e-8);
+  EXPECT_NEAR(a.p_star() / b.p_star(), 1.0, tol);
+  EXPECT_NEAR(a.u_star() / b.u_star(), 1.0, tol);
   for (double xi : {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.7, 2.0}) {
     const auto s = a.sample(xi);
     const auto t = b.sample(xi);
-    EXPECT_NEAR(s.rho, t.rho, 1e-8) << xi;
-    EXPECT_NEAR(s.u, t.u, 1e-8) << xi;
-    EXPECT_NEAR(s.p, t.p, 1e-8) << xi;
+    EXPECT_NEAR(s.rho, t.rho, tol) << xi;
+    EXPECT_NEAR(s.u, t.u, tol) << xi;
+    EXPECT_NEAR(s.p, t.p, tol) << xi;
   }
   // Toro's 123 problem: two rarefactions, so the right-rarefaction branch is sampled too
   const exact::IsentropeRiemann e123(gas, 1.0, -2.0, 0.4 / 0.4, 1.0, 2.0, 0.4, 1.4);
   const exact::Riemann t123({1, -2, 0.4}, {1, 2, 0.4}, 1.4, 1.4);
-  EXPECT_NEAR(e123.p_star() / t123.p_star(), 1.0, 1e-7);
-  EXPECT_NEAR(e123.u_star(), t123.u_star(), 1e-8);
+  EXPECT_NEAR(e123.p_star() / t123.p_star(), 1.0, test::by_precision(1e-7, 1e-6));
+  EXPECT_NEAR(e123.u_star(), t123.u_star(), tol);
   for (double xi : {-3.0, -2.0, -1.0, -0.2, 0.0, 0.2, 1.0, 2.0, 3.0}) {
     const auto s = e123.sample(xi);
     const auto t = t123.sample(xi);
-    EXPECT_NEAR(s.rho, t.rho, 1e-8) << xi;
-    EXPECT_NEAR(s.u, t.u, 1e-8) << xi;
-    EXPECT_NEAR(s.p, t.p, 1e-8) << xi;
+    EXPECT_NEAR(s.rho, t.rho, tol) << xi;
+    EXPECT_NEAR(s.u, t.u, tol) << xi;
+    EXPECT_NEAR(s.p, t.p, tol) << xi;
   }
   // water (stiffened gas) into air: the isentrope stops before p = 0, p* = 4.8e-6 Mbar
   const eos::Eos water = eos::make_eos(eos::StiffenedGas{4.4, 6e-3});
   const double ew = (1e-2 + 4.4 * 6e-3) / 3.4;
   const exact::IsentropeRiemann c(water, 1.0, 0.0, ew, 1e-3, 0.0, 1e-6, 1.4);
   const exact::Riemann d({1, 0, 1e-2}, {1e-3, 0, 1e-6}, 4.4, 1.4, 6e-3, 0);
-  EXPECT_NEAR(c.p_star() / d.p_star(), 1.0, 1e-7);
-  EXPECT_NEAR(c.u_star() / d.u_star(), 1.0, 1e-7);
+  EXPECT_NEAR(c.p_star() / d.p_star(), 1.0, test::by_precision(1e-7, 1e-3));
+  EXPECT_NEAR(c.u_star() / d.u_star(), 1.0, test::by_precision(1e-7, 1e-5));
   // JWL products: the table at half the number of steps gives the same star state
   const auto* m = materials::find_material("pbx9404_products");
   const eos::Eos jwl = materials::make_eos(*m);
   const double e0 = m->param("E0") / m->rho0;
   const exact::IsentropeRiemann fine(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4);
   const exact::IsentropeRiemann half(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4, 100000);
-  EXPECT_NEAR(half.p_star() / fine.p_star(), 1.0, 1e-9);
-  EXPECT_NEAR(half.u_star() / fine.u_star(), 1.0, 1e-9);
+  EXPECT_NEAR(half.p_star() / fine.p_star(), 1.0, test::by_precision(1e-9, 1e-6));
+  EXPECT_NEAR(half.u_star() / fine.u_star(), 1.0, test::by_precision(1e-9, 1e-6));
   // ... and lies on the closed-form JWL isentrope through the left state,
   // p_s(V) = A exp(-R1 V) + B exp(-R2 V) + C V^-(1 + omega), V = rho0 / rho
   const auto j = jwl.jwl();
@@ -564,8 +570,8 @@ TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
     EXPECT_GT(w->rho_min, 0) << name;
     EXPECT_GT(w->e_min, 0) << name;
     EXPECT_GT(w->p_min, 0) << name;
-    EXPECT_LT(std::abs(w->dm_products), 1e-13) << name;
-    EXPECT_LT(std::abs(w->dm_air), 1e-12) << name;
+    EXPECT_LT(std::abs(w->dm_products), test::roundoff(1e-13)) << name;
+    EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-12)) << name;
   }
   // Star state (observed at 400 cells: KE fix on p +3.3 %, u +2.3 %; off p -5.1 %, u +0.7 %,
   // its shocked air still short of the plateau for the energy it lost).
@@ -615,7 +621,10 @@ struct SliverSource {
   }
   KOKKOS_INLINE_FUNCTION int content(int i, int, int, Real* a, Real* r, Real* en) const {
     const double x = g.node_coord(0, i) + 0.5 * g.dx[0];
-    const Real f = MP_KOKKOS_MATH::pow(Real(10), Real(-12 + (i % 7)));
+    // a float build holds no fraction below hydro::kMinFractionFloor (4.8e-7) beside another
+    // material, so its slivers start at twice that (9.5e-7) instead of 1e-12
+    const Real f = mmax(MP_KOKKOS_MATH::pow(Real(10), Real(-12 + (i % 7))),
+                        Real(2 * hydro::kMinFractionFloor));
     return water_air_content(x < 70 ? 1 - f : f, e_water, e_air, a, r, en);
   }
 };
@@ -691,15 +700,20 @@ TEST(MultiMaterial, SliversStayFiniteAndPositive) {
           {"numerics.layout=" + layout, "numerics.closure=" + closure, "time.max_cycles=3"});
       std::printf("slivers %-24s after 3 cycles: %d sliver cells (smallest %.2e)\n", name.c_str(),
                   early.slivers_end, early.smallest);
-      EXPECT_GE(early.slivers_end, 100) << name;
-      EXPECT_LE(early.smallest, 1e-11) << name;
+      // (float: the relaxation squeezes the air slivers in the water below the 4.8e-7 floor
+      // within 3 cycles; 76 of 160 remain there, the smallest 1.3e-6)
+      EXPECT_GE(early.slivers_end, test::kFloat ? 60 : 100) << name;
+      EXPECT_LE(early.smallest, test::by_precision(1e-11, 1.5e-6)) << name;
       EXPECT_EQ(early.bad, LONG_MAX) << name;
       EXPECT_EQ(s.bad, LONG_MAX) << name;
       EXPECT_EQ(s.slivers_start, 40 * 4) << name;  // 40 cells x 4 (2x2 in y, z)
       // slivers leave only below min_fraction (1e-14 of a cell), handing their mass to the
-      // cell's largest material: at most 40 x 4 x 1e-14 x 0.125 cm^3 x 1 g/cm^3 of water
-      EXPECT_LT(std::abs(s.water_mass_change), 1e-12) << name;
-      EXPECT_LT(std::abs(s.air_mass_change), 1e-9) << name;
+      // cell's largest material: at most 40 x 4 x 1e-14 x 0.125 cm^3 x 1 g/cm^3 of water.
+      // In float the floor is 4.8e-7 and the slivers 1e-6: the water slivers in the air,
+      // 80 x 1e-6 x 0.125 g = 1e-5 g, may all go to the air (0.03 g), 3.3e-4 of it (observed
+      // 2.9e-4); the water's own change is float round-off (observed 1.4e-6).
+      EXPECT_LT(std::abs(s.water_mass_change), test::by_precision(1e-12, 1e-5)) << name;
+      EXPECT_LT(std::abs(s.air_mass_change), test::by_precision(1e-9, 4e-4)) << name;
     }
 }
 
@@ -787,12 +801,14 @@ TEST(MultiMaterial, RelaxationEqualisesMixedCellPressuresInOneCycle) {
     EXPECT_EQ(es.alpha_min, 0.5) << layout;
     EXPECT_EQ(es.alpha_max, 0.5) << layout;
     const Closure rx = one_cycle_closure(layout, "relaxation");
-    EXPECT_LT(rx.spread, 1e-9) << layout;
+    // float: water's pressure resolution eps rho c^2 = 3.1e-9 Mbar against P* = 2e-6 Mbar
+    // (observed 3.9e-4)
+    EXPECT_LT(rx.spread, test::by_precision(1e-9, 2e-3)) << layout;
     // a regression pin: the end state of the relaxation depends on its path (work at P*); the
     // point test of relax.hpp lands on the same 0.6893
     EXPECT_NEAR(rx.alpha_min, 0.6893, 1e-3) << layout;
     EXPECT_EQ(rx.alpha_min, rx.alpha_max) << layout;  // every cell alike
-    EXPECT_LT(std::abs(rx.mass_change), 1e-14) << layout;
-    EXPECT_LT(std::abs(rx.energy_change), 1e-13) << layout;
+    EXPECT_LT(std::abs(rx.mass_change), test::roundoff(1e-14)) << layout;
+    EXPECT_LT(std::abs(rx.energy_change), test::roundoff(1e-13)) << layout;
   }
 }
