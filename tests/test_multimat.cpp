@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <string>
 
 #include "config/deck.hpp"
 #include "exact/isentrope_riemann.hpp"
@@ -194,6 +196,35 @@ TEST(MultiMaterial, DenseAndCompactLayoutsAgree) {
   expect_layouts_agree("water_air.yaml", {"time.end=60", "numerics.closure=relaxation"});
   expect_layouts_agree("triple_point.yaml",
                        {"mesh.cells=[35,15,2]", "time.end=1.5", "numerics.closure=relaxation"});
+  // with no fraction floor asked for, the build's own floor keeps the layouts together
+  expect_layouts_agree("sphere_advection.yaml",
+                       {"mesh.cells=[12,12,12]", "time.end=1.0", "numerics.min_fraction=0"});
+}
+
+// min_fraction is at least 4 ulps of 1 in Real (a smaller sliver leaves 1 - f at exactly 1,
+// pure to the dense layout and mixed to the compact one), and the run log says when it raised
+// the deck's value.
+TEST(MultiMaterial, MinFractionFloorIsAppliedAndLogged) {
+  const double floor = 4 * double(std::numeric_limits<Real>::epsilon());
+  EXPECT_EQ(hydro::kMinFractionFloor, floor);
+  EXPECT_EQ(hydro::effective_min_fraction(0.0), floor);
+  EXPECT_EQ(hydro::effective_min_fraction(1e-3), 1e-3);
+  EXPECT_GT(double(Real(1) - Real(floor)), 0.0);
+  EXPECT_LT(Real(1) - Real(floor), Real(1));  // 1 - floor is held below 1
+  const auto line = [](const std::string& value) {
+    RunSettings settings;
+    settings.quiet = true;
+    const Simulation sim(test::load_scene("sod2.yaml", {"numerics.min_fraction=" + value}),
+                         MPI_COMM_WORLD, settings);
+    for (const auto& m : sim.modules())
+      if (m.find("min fraction") != std::string::npos) return m;
+    return std::string();
+  };
+  const std::string raised = line("0"), kept = line("1e-5");
+  std::printf("%s\n", raised.c_str());
+  EXPECT_NE(raised.find("raised to 4 ulps of 1"), std::string::npos) << raised;
+  EXPECT_NE(kept.find("min fraction 1e-05"), std::string::npos) << kept;
+  EXPECT_EQ(kept.find("raised"), std::string::npos) << kept;
 }
 
 namespace {
