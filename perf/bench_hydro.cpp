@@ -22,6 +22,9 @@
 
 using namespace mp;
 
+// Bytes per cell per cycle of the bandwidth column (see where it is used).
+constexpr double kBytesPerCell = 20.0 * 8 * sizeof(Real);
+
 int main(int argc, char** argv) {
   mp::prepare_mpi_environment();
   MPI_Init(&argc, &argv);
@@ -69,10 +72,11 @@ int main(int argc, char** argv) {
         const char* const* phase_names = perf::CycleTimes::names;
         const double cells = double(s) * s * s;
         const double rate = cells * cycles / wall;
-        // Bytes a cycle must move at the least: ~20 cell and node fields read or written once
-        // per cycle would be 160 B/cell in double; report the implied bandwidth at that
-        // traffic so the distance from STREAM is visible.
-        const double bytes_per_cell = 20.0 * sizeof(Real) * 8;
+        // A traffic model, not a measurement: ~20 cell and node fields, each passed over about
+        // 8 times a cycle (predictor, corrector, EOS and q, three remap sweeps, time step and
+        // check), 20 x 8 x sizeof(Real) = 1280 B/cell in double, 640 in float; the implied
+        // bandwidth shows the distance from STREAM.
+        const double bytes_per_cell = kBytesPerCell;
         rows << "| " << s << "^3 | " << cycles << " | " << wall / cycles * 1e3 << " | "
              << rate / 1e6 << " | " << rate * bytes_per_cell / 1e9 << " |";
         for (int ph = 0; ph < 5; ++ph) rows << " " << 100 * phase[ph] / wall << " |";
@@ -132,10 +136,10 @@ int main(int argc, char** argv) {
         std::printf("STREAM triad (same process): %.2f GB/s; %s, %d threads/rank, %d ranks\n\n",
                     st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks);
         std::printf(
-            "| size | cycles | ms/cycle | Mcell-cycles/s | GB/s at 1280 B/cell | %% time step "
+            "| size | cycles | ms/cycle | Mcell-cycles/s | GB/s at %.0f B/cell | %% time step "
             "| %% lagrange | %% remap | %% eos+q | %% check |\n"
             "|---|---|---|---|---|---|---|---|---|---|\n%s",
-            rows.str().c_str());
+            kBytesPerCell, rows.str().c_str());
         if (!no_breakdown)
           std::printf(
               "\nPer-kernel breakdown (separate block, Kokkos::fence before and after every "
