@@ -2,9 +2,10 @@
 # README command 2: set up, build, and run the whole test suite with CTest.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${MINIPAGOSA_BUILD_DIR:-${here}/build}"
+build="$(realpath -m "${MINIPAGOSA_BUILD_DIR:-${here}/build}")"
 start=$(date +%s)
-bash "${here}/ci/build.sh"
+# precision pinned: a build directory once configured for float stays float otherwise
+MINIPAGOSA_BUILD_DIR="${build}" bash "${here}/ci/build.sh" -DMINIPAGOSA_PRECISION=double
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "${build}"
 # Tests declare how many ranks they use (PROCESSORS); ctest packs them onto the cores.

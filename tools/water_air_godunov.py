@@ -12,7 +12,14 @@ coordinate, with the face pressure and velocity from the exact two-stiffened-gas
 p -> p + p_inf on each side). Order 1 takes the cell states; order 2 is MUSCL-Hancock: minmod
 slopes of (specific volume, u, p) in each cell, a half-step predictor from the Lagrangian
 equations in primitive form, then the same Riemann solver. The initial state, the mesh, the end
-time, the first time step (0.01 us, growth 1.1) and the Courant number (0.5) are the deck's.
+time, the first time step (0.01 us, growth 1.1) and the Courant number (0.5) are the deck's;
+the Godunov steps use their own Courant limit dx/c (the code's is dx/(c_eff + |u|)).
+
+For comparison it also runs a 1-D model of minipagosa's own Lagrangian step without the remap
+(`--staggered`): node velocities, cell pressures, predictor-corrector, the viscosity
+q = rho (c_Q du^2 - c_L c du) in compression with Christensen's limiter (c_Q 0.75, c_L 0.2,
+docs/numerics.md), and the same step with an unlimited 0.5 rho c |du| in compression and
+expansion instead (acoustic Riemann dissipation between two nodes).
 
     /usr/bin/python3 tools/water_air_godunov.py [--cells 200 400 800] [--json out.json]
 """
@@ -68,13 +75,16 @@ def minmod(a, b):
     return np.where(a * b > 0, np.sign(a) * np.minimum(np.abs(a), np.abs(b)), 0.0)
 
 
-def run(cells, order):
+def initial_state(cells):
+    """The deck's mesh and initial state: nodes x, the water mask, gamma, p_inf, rho, p."""
     x = np.linspace(0.0, LENGTH, cells + 1)
     water = 0.5 * (x[1:] + x[:-1]) < X0
-    gamma = np.where(water, WATER["gamma"], AIR["gamma"])
-    p_inf = np.where(water, WATER["p_inf"], AIR["p_inf"])
-    rho = np.where(water, WATER["rho"], AIR["rho"])
-    p = np.where(water, WATER["p"], AIR["p"])
+    pick = lambda key: np.where(water, WATER[key], AIR[key])
+    return x, water, pick("gamma"), pick("p_inf"), pick("rho"), pick("p")
+
+
+def run(cells, order):
+    x, water, gamma, p_inf, rho, p = initial_state(cells)
     mass = rho * np.diff(x)
     u = np.zeros(cells)
     energy = (p + gamma * p_inf) / ((gamma - 1.0) * rho)  # total specific energy, u = 0
@@ -128,22 +138,83 @@ def run(cells, order):
                 air_p_min=float(p[~water].min()))
 
 
+def run_staggered(cells, acoustic=False):
+    """1-D staggered Lagrangian step (no remap); acoustic: q = -0.5 rho c du both ways."""
+    x, water, gamma, p_inf, rho, p = initial_state(cells)
+    e = (p + gamma * p_inf) / ((gamma - 1.0) * rho)
+    mass = rho * np.diff(x)
+    node_mass = np.zeros(cells + 1)
+    node_mass[1:] += 0.5 * mass
+    node_mass[:-1] += 0.5 * mass
+    u = np.zeros(cells + 1)
+    eos = lambda r, en: (gamma - 1.0) * r * en - gamma * p_inf
+    t, dt, cycles = 0.0, 0.01, 0
+    while t < T_END * (1 - 1e-14):
+        vol = np.diff(x)
+        rho = mass / vol
+        p = eos(rho, e)
+        c = np.sqrt(gamma * (p + p_inf) / rho)
+        du = np.diff(u)
+        if acoustic:
+            q = -0.5 * rho * c * du
+        else:  # Christensen's limiter on the jump, compression only
+            with np.errstate(divide="ignore", invalid="ignore"):
+                left = np.where(du != 0, np.r_[du[0], du[:-1]] / du, 1.0)
+                right = np.where(du != 0, np.r_[du[1:], du[-1]] / du, 1.0)
+            psi = np.clip(np.minimum(np.minimum(0.5 * (left + right), 2 * left),
+                                     np.minimum(2 * right, 1.0)), 0.0, 1.0)
+            jump = du * (1 - psi)
+            q = np.where(du < 0, rho * (0.75 * jump**2 - 0.2 * c * jump), 0.0)
+        c_eff = np.sqrt(c**2 + 2 * np.abs(q) / rho)
+        if cycles > 0:
+            speed = c_eff + np.maximum(np.abs(u[1:]), np.abs(u[:-1]))
+            dt = min(0.5 * np.min(vol / speed), 1.1 * dt)
+        dt = min(dt, T_END - t)
+        # predictor: half-step volume and energy, pressure there
+        vol_h = np.diff(x + 0.5 * dt * u)
+        p_h = eos(mass / vol_h, e - (p + q) * (vol_h - vol) / mass)
+        force = np.zeros(cells + 1)
+        force[1:-1] = (p_h + q)[:-1] - (p_h + q)[1:]
+        u_new = u + dt * force / node_mass
+        u_new[0] = u_new[-1] = 0.0
+        x_new = x + 0.5 * dt * (u + u_new)
+        e = e - (p_h + q) * (np.diff(x_new) - vol) / mass
+        x, u = x_new, u_new
+        t += dt
+        cycles += 1
+    rho = mass / np.diff(x)
+    p = eos(rho, e)
+    k = int(np.argmin(np.where(water, p, np.inf)))
+    return dict(cells=cells, order="acoustic" if acoustic else "staggered", cycles=cycles,
+                p_water_min=float(p[k]), x_min=float(0.5 * (x[k] + x[k + 1])),
+                rho_at_min=float(rho[k]), air_p_min=float(p[~water].min()))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("--cells", type=int, nargs="+", default=[200, 400, 800])
     ap.add_argument("--json", default=None, help="also write the results here")
+    ap.add_argument("--staggered", action="store_true",
+                    help="also run the 1-D model of minipagosa's Lagrangian step")
     a = ap.parse_args()
     one = lambda s: tuple(np.array([v]) for v in (s["rho"], 0.0, s["p"], s["gamma"], s["p_inf"]))
     p_star, u_star = (float(v[0]) for v in riemann(one(WATER), one(AIR)))
     print(f"exact star state: p* {p_star:.4e} Mbar, u* {u_star:.5f} cm/us")
     rows = []
-    for order in (1, 2):
-        for cells in a.cells:
+    runs = [(order, cells) for order in (1, 2) for cells in a.cells]
+    if a.staggered:
+        runs += [(kind, cells) for kind in ("staggered", "acoustic") for cells in a.cells]
+    names = {1: "Godunov order 1", 2: "MUSCL-Hancock", "staggered": "staggered (limited q)",
+             "acoustic": "staggered (0.5 rho c |du|)"}
+    for order, cells in runs:
+        if order in (1, 2):
             r = run(cells, order)
-            rows.append(r)
-            print(f"order {order}, {cells:4d} cells, {r['cycles']:5d} cycles: least pure-water p "
-                  f"{r['p_water_min']:+.3e} Mbar at x {r['x_min']:.2f} (rho {r['rho_at_min']:.5f}),"
-                  f" {r['p_water_min'] / p_star:+.2f} p*; least air p {r['air_p_min']:.3e}")
+        else:
+            r = run_staggered(cells, acoustic=order == "acoustic")
+        rows.append(r)
+        print(f"{names[order]:27s} {cells:4d} cells, {r['cycles']:5d} cycles: least pure-water p "
+              f"{r['p_water_min']:+.3e} Mbar at x {r['x_min']:.2f} (rho {r['rho_at_min']:.5f}), "
+              f"{r['p_water_min'] / p_star:+.2f} p*; least air p {r['air_p_min']:.3e}")
     if a.json:
         with open(a.json, "w") as f:
             json.dump(dict(p_star=p_star, u_star=u_star, runs=rows), f, indent=1)

@@ -35,7 +35,7 @@ KOKKOS_INLINE_FUNCTION Real corner_sum(const Field3& f, int i, int j, int k) {
 }
 
 // The smallest volume fraction a material may hold beside others: 4 ulps of 1 in Real. Below
-// it the largest material's fraction 1 - f rounds to 1 (in float from f < 6e-8), so a cell
+// it the largest material's fraction 1 - f rounds to 1 (in float from f < 2^-25 = 3e-8), so a cell
 // would read as pure in the dense layout (alpha == 1) and mixed in the compact one, and its
 // volume would not sum to the cell's. 8.9e-16 in double builds (below the 1e-14 default), 4.8e-7
 // in float builds.
@@ -72,7 +72,8 @@ struct Options {
   // Newton updates per cycle, stopping once the pressures agree to relax_tol (relative).
   bool relax = false;
   int relax_iterations = 20;
-  Real relax_tol = Real(1e-10);
+  // (1e-10, or 64 ulps where Real cannot hold that: 7.6e-6 in float)
+  Real relax_tol = Real(std::max(1e-10, 64.0 * double(std::numeric_limits<Real>::epsilon())));
 };
 
 struct State {

@@ -325,6 +325,7 @@ void Hydro::mm_corrector(Real vol) {
   const bool relax = opt_.relax;
   const int iters = opt_.relax_iterations;
   const Real tol = opt_.relax_tol;
+  const Real fmin = opt_.min_fraction;
   auto q = s_.q, rho = s_.rho, e = s_.e;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   mm_->for_cells(
@@ -350,7 +351,7 @@ void Hydro::mm_corrector(Real vol) {
           ++n;
         }
         if (relax && n > 1) {
-          relax_pressures(n, mats.eos, id, mv, mm, me, pm, iters, tol);
+          relax_pressures(n, mats.eos, id, mv, mm, me, pm, iters, tol, fmin * vnew);
           Real vsum = 0;
           for (int s = 0; s < n; ++s) vsum += mv[s];
           for (int s = 0; s < n; ++s) {

@@ -43,10 +43,13 @@ struct RelaxResult {
 
 // n materials with EOS eos[id[s]], volumes vol[s] (> 0), masses mass[s] (> 0) and specific
 // energies e[s]. Updates vol and e in place; sum vol and sum mass e are kept (to round-off).
-// p[s] gets the final material pressures.
+// p[s] gets the final material pressures. No volume is squeezed below v_min (the fraction
+// floor times the cell volume: below it the other fractions round to 1 in float, see
+// hydro::kMinFractionFloor); a material at the floor that still wants to shrink stops the
+// relaxation of its cell, and the next remap removes it.
 KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, const int* id,
                                                    Real* vol, const Real* mass, Real* e, Real* p,
-                                                   int max_iter, Real tol) {
+                                                   int max_iter, Real tol, Real v_min = 0) {
   constexpr int kMax = 16;
   Real wgt[kMax], dv[kMax];
   Real total = 0;
@@ -96,9 +99,13 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
     // one factor on every dV: no material below half or above twice its volume per update
     Real theta = 1;
     for (int s = 0; s < n; ++s) {
-      if (dv[s] < 0) theta = mmin(theta, Real(0.5) * vol[s] / -dv[s]);
+      if (dv[s] < 0) {
+        theta = mmin(theta, Real(0.5) * vol[s] / -dv[s]);
+        theta = mmin(theta, mmax(Real(0), (vol[s] - v_min) / -dv[s]));
+      }
       if (dv[s] > 0) theta = mmin(theta, vol[s] / dv[s]);
     }
+    if (!(theta > 0)) break;
     Real sum = 0;
     for (int s = 0; s < n; ++s) {
       const Real d = theta * dv[s];
