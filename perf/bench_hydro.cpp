@@ -22,7 +22,10 @@
 
 using namespace mp;
 
-// Bytes per cell per cycle of the bandwidth column (see where it is used).
+// Bytes per cell per cycle behind the bandwidth column. A traffic model, not a measurement:
+// ~20 cell and node fields, each passed over about 8 times a cycle (predictor, corrector, EOS
+// and q, three remap sweeps, time step and check), 20 x 8 x sizeof(Real) = 1280 B/cell in
+// double, 640 in float; the implied bandwidth shows the distance from STREAM.
 constexpr double kBytesPerCell = 20.0 * 8 * sizeof(Real);
 
 int main(int argc, char** argv) {
@@ -72,13 +75,8 @@ int main(int argc, char** argv) {
         const char* const* phase_names = perf::CycleTimes::names;
         const double cells = double(s) * s * s;
         const double rate = cells * cycles / wall;
-        // A traffic model, not a measurement: ~20 cell and node fields, each passed over about
-        // 8 times a cycle (predictor, corrector, EOS and q, three remap sweeps, time step and
-        // check), 20 x 8 x sizeof(Real) = 1280 B/cell in double, 640 in float; the implied
-        // bandwidth shows the distance from STREAM.
-        const double bytes_per_cell = kBytesPerCell;
         rows << "| " << s << "^3 | " << cycles << " | " << wall / cycles * 1e3 << " | "
-             << rate / 1e6 << " | " << rate * bytes_per_cell / 1e9 << " |";
+             << rate / 1e6 << " | " << rate * kBytesPerCell / 1e9 << " |";
         for (int ph = 0; ph < 5; ++ph) rows << " " << 100 * phase[ph] / wall << " |";
         rows << "\n";
         js << (n ? "," : "") << "\n    {\"cells_per_axis\": " << s << ", \"cells\": " << cells

@@ -11,6 +11,7 @@
 #include <random>
 #include <vector>
 
+#include "precision.hpp"
 #include "remap/plic.hpp"
 
 using namespace mp;
@@ -27,8 +28,7 @@ Vec cross(const Vec& a, const Vec& b) {
 }
 
 // Tolerances are stated for double; a float build scales them by the ratio of round-offs.
-const double scale =
-    double(std::numeric_limits<Real>::epsilon()) / std::numeric_limits<double>::epsilon();
+const double scale = mp::test::roundoff(1.0);
 
 // Volume of the box [lo, hi] on the side n.x <= alpha (n != 0). Each of the six faces is
 // clipped by the half-space (Sutherland-Hodgman against one plane); the volume is
@@ -173,7 +173,7 @@ TEST(Plic, VolumeMatchesClippedPolyhedron) {
   EXPECT_NEAR(vol({1, 0, 0}, 0.3), 0.3, 1e-16 * scale);
   EXPECT_NEAR(vol({0, 0, -2}, -0.6), 0.7, 1e-15 * scale);
   // one ulp of 0.5 in double; float rounds this one to 1.5 ulps (8.9e-8), so 2 ulps there
-  EXPECT_NEAR(vol({1, 1, 1}, 1.5), 0.5, scale > 1 ? 1.2e-7 : 1e-16);
+  EXPECT_NEAR(vol({1, 1, 1}, 1.5), 0.5, mp::test::by_precision(1e-16, 1.2e-7));
   EXPECT_NEAR(vol({1, 1, 1}, 0.5), 1.0 / 48, 1e-16 * scale);
   std::printf("plane_cube_volume: %d cases, max |error| vs clipped polyhedron = %.2e\n", count,
               max_err);

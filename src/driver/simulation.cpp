@@ -210,6 +210,8 @@ std::vector<std::string> Simulation::modules() const {
   if (scene_.materials.size() == 1) {
     m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
   } else {
+    const double asked = scene_.numerics.min_fraction;
+    const double used = hydro::effective_min_fraction(asked);
     std::ostringstream os;
     os << "materials: " << scene_.materials.size() << " materials, " << scene_.numerics.layout
        << " layout, "
@@ -221,11 +223,10 @@ std::vector<std::string> Simulation::modules() const {
        << ", interface reconstruction "
        << (scene_.numerics.interface == "youngs" ? "Youngs PLIC (onion skin)"
                                                  : scene_.numerics.interface)
-       << ", min fraction " << hydro::effective_min_fraction(scene_.numerics.min_fraction);
-    if (hydro::effective_min_fraction(scene_.numerics.min_fraction) > scene_.numerics.min_fraction)
-      os << " (the deck's " << scene_.numerics.min_fraction
-         << " raised to 4 ulps of 1 in this build's " << (sizeof(Real) == 4 ? "float" : "double")
-         << " fields)";
+       << ", min fraction " << used;
+    if (used > asked)
+      os << " (the deck's " << asked << " raised to 4 ulps of 1 in this build's "
+         << (sizeof(Real) == 4 ? "float" : "double") << " fields)";
     m.push_back(os.str());
   }
   return m;
