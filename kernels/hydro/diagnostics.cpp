@@ -1,19 +1,15 @@
 // Global reductions: the time step with its limiting cell, the health check that stops a
 // non-physical run, and the conserved totals of the run summary.
+#include <algorithm>
 #include <cfloat>
 #include <climits>
+#include <string>
 
 #include "core/math.hpp"
 #include "core/reduce.hpp"
 #include "hydro/hydro.hpp"
 
 namespace mp::hydro {
-
-namespace {
-MPI_Datatype mpi_real() {
-  return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
-}
-}  // namespace
 
 TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   const Geometry g = mesh_.geometry();
@@ -39,13 +35,19 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
         Real dt = FLT_MAX;
         for (int d = 0; d < 3; ++d) dt = mmin(dt, g.dx[d] / (ceff + vmax[d] + Real(1e-30)));
         // an unsplit remap moves material across all faces at once: bound the Courant sum
-        if (unsplit)
-          dt = mmin(dt,
-                    1 / (vmax[0] / g.dx[0] + vmax[1] / g.dx[1] + vmax[2] / g.dx[2] + Real(1e-30)));
+        long sum_bound = 0;  // 1 where that bound is the tighter one (logged "courant_sum")
+        if (unsplit) {
+          const Real dt_sum =
+              1 / (vmax[0] / g.dx[0] + vmax[1] / g.dx[1] + vmax[2] / g.dx[2] + Real(1e-30));
+          if (dt_sum < dt) {
+            dt = dt_sum;
+            sum_bound = 1;
+          }
+        }
         dt *= cfl;
         if (dt < acc.val) {
           acc.val = dt;
-          acc.loc = (i - ng) + long(nlx) * ((j - ng) + long(nly) * (k - ng));
+          acc.loc = 2 * ((i - ng) + long(nlx) * ((j - ng) + long(nly) * (k - ng))) + sum_bound;
         }
       },
       MinLoc(best));
@@ -55,18 +57,20 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
     int rank;
   } mine{double(best.val), mesh_.rank()}, global{};
   MPI_Allreduce(&mine, &global, 1, MPI_DOUBLE_INT, MPI_MINLOC, mesh_.comm());
-  int cell[3] = {0, 0, 0};
+  int cell[4] = {0, 0, 0, 0};
   if (mesh_.rank() == global.rank) {
-    cell[0] = int(best.loc % nlx) + g.offset[0];
-    cell[1] = int((best.loc / nlx) % nly) + g.offset[1];
-    cell[2] = int(best.loc / (long(nlx) * nly)) + g.offset[2];
+    const long at = best.loc / 2;
+    cell[0] = int(at % nlx) + g.offset[0];
+    cell[1] = int((at / nlx) % nly) + g.offset[1];
+    cell[2] = int(at / (long(nlx) * nly)) + g.offset[2];
+    cell[3] = int(best.loc % 2);
   }
-  MPI_Bcast(cell, 3, MPI_INT, global.rank, mesh_.comm());
+  MPI_Bcast(cell, 4, MPI_INT, global.rank, mesh_.comm());
 
   TimeStep ts;
   ts.dt = Real(global.dt);
   ts.cell = {cell[0], cell[1], cell[2]};
-  ts.limit = "cfl";
+  ts.limit = cell[3] ? "courant_sum" : "cfl";
   if (dt_old > 0 && ts.dt > opt_.growth * dt_old) {
     ts.dt = opt_.growth * dt_old;
     ts.limit = "growth";
@@ -84,33 +88,63 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   return ts;
 }
 
+// What the health check found wrong, in the order a cell's quantities are tested; the report
+// names the lowest bad cell and, in it, the first bad quantity.
+constexpr long kBadDensity = 0, kBadEnergy = 1, kBadPressure = 2, kBadVelocityX = 3,
+               kBadVelocityY = 4, kBadVelocityZ = 5, kBadKinds = 6, kNotBad = -1;
+
 Health Hydro::check() const {
   const Geometry g = mesh_.geometry();
   auto rho = s_.rho, e = s_.e, p = s_.p, u = s_.u, v = s_.v, w = s_.w;
   const long nx = mesh_.global_cells(0), ny = mesh_.global_cells(1);
+  // key = ((cell * kBadKinds + quantity) * 8 + top): lowest cell first, then its first bad
+  // quantity; `top` marks a node of the last node layer (bit d: along axis d), which belongs to
+  // no owned cell and is reported with the owned cell below it.
   long first = LONG_MAX;
   Kokkos::parallel_reduce(
-      "health::check", mesh_.cells(Region::Owned),
+      "health::cells", mesh_.cells(Region::Owned),
       KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-        const bool bad = !(rho(i, j, k) > 0) || !(e(i, j, k) >= 0) || !misfinite(rho(i, j, k)) ||
-                         !misfinite(e(i, j, k)) || !misfinite(p(i, j, k)) ||
-                         !misfinite(u(i, j, k)) || !misfinite(v(i, j, k)) || !misfinite(w(i, j, k));
-        if (bad) {
-          const long id = g.global_cell(i, j, k, nx, ny);
-          if (id < acc) acc = id;
-        }
+        const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
+        const long what = !(r > 0) || !misfinite(r)      ? kBadDensity
+                          : !(en >= 0) || !misfinite(en) ? kBadEnergy
+                          : !misfinite(pr)               ? kBadPressure
+                                                         : kNotBad;
+        if (what < 0) return;
+        const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
+        if (key < acc) acc = key;
       },
       Kokkos::Min<long>(first));
-  long global_first = LONG_MAX;
-  MPI_Allreduce(&first, &global_first, 1, MPI_LONG, MPI_MIN, mesh_.comm());
-  bool material_bad = false;
+  // Every owned node, the last layer [ng + nl] included.
+  const int tx = Mesh::ng + mesh_.owned_cells(0), ty = Mesh::ng + mesh_.owned_cells(1),
+            tz = Mesh::ng + mesh_.owned_cells(2);
+  long first_node = LONG_MAX;
+  Kokkos::parallel_reduce(
+      "health::nodes", mesh_.nodes(Region::Owned),
+      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+        const long what = !misfinite(u(i, j, k))   ? kBadVelocityX
+                          : !misfinite(v(i, j, k)) ? kBadVelocityY
+                          : !misfinite(w(i, j, k)) ? kBadVelocityZ
+                                                   : kNotBad;
+        if (what < 0) return;
+        const int top = (i == tx ? 1 : 0) + (j == ty ? 2 : 0) + (k == tz ? 4 : 0);
+        const long cell =
+            g.global_cell(i == tx ? i - 1 : i, j == ty ? j - 1 : j, k == tz ? k - 1 : k, nx, ny);
+        const long key = (cell * kBadKinds + what) * 8 + top;
+        if (key < acc) acc = key;
+      },
+      Kokkos::Min<long>(first_node));
+  first = std::min(first, first_node);
+  long global_key = LONG_MAX;
+  MPI_Allreduce(&first, &global_key, 1, MPI_LONG, MPI_MIN, mesh_.comm());
+  long global_first = global_key == LONG_MAX ? LONG_MAX : global_key / (8 * kBadKinds);
+  int bad_material = -1, material_what = 0;
   if (mm_) {
     // a material inside a mixed cell can go bad while the cell average still looks fine
-    double vals[3];
-    const long mfirst = mm_->first_bad(vals);
+    const long mfirst = mm_->first_bad(bad_material, material_what);
     if (mfirst < global_first) {
       global_first = mfirst;
-      material_bad = true;
+    } else {
+      bad_material = -1;
     }
   }
   Health h;
@@ -118,7 +152,7 @@ Health Hydro::check() const {
   h.ok = false;
   h.cell = {int(global_first % nx), int((global_first / nx) % ny), int(global_first / (nx * ny))};
   // The owner reads the cell's values and shares them.
-  double vals[4] = {0, 0, 0, 0};
+  double vals[3] = {0, 0, 0};
   bool mine = true;
   int loc[3];
   for (int d = 0; d < 3; ++d) {
@@ -134,20 +168,41 @@ Health Hydro::check() const {
     vals[0] = read(rho);
     vals[1] = read(e);
     vals[2] = read(p);
-    vals[3] = read(u);
   }
-  double all[4];
-  MPI_Allreduce(vals, all, 4, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  double all[3];
+  MPI_Allreduce(vals, all, 3, MPI_DOUBLE, MPI_SUM, mesh_.comm());
   h.rho = all[0];
   h.e = all[1];
   h.p = all[2];
   h.volume = g.cell_volume();
-  h.what = material_bad   ? "a material of a mixed cell has non-positive density or negative "
-                            "or non-finite energy"
-           : !(h.rho > 0) ? "density not positive"
-           : !(h.e >= 0)  ? "negative internal energy"
-                          : "NaN or infinite value";
-  (void)mpi_real;
+  // The message names the quantity as the dumps do (density, energy, pressure, velocity_x ...).
+  if (bad_material >= 0) {
+    static const char* kWhat[4] = {"density not positive", "density NaN or infinite",
+                                   "energy negative", "energy NaN or infinite"};
+    h.what = "material " + std::to_string(bad_material) + " " + kWhat[material_what] +
+             " in a mixed cell";
+    return h;
+  }
+  const long what = (global_key / 8) % kBadKinds;
+  const int top = int(global_key % 8);
+  switch (what) {
+    case kBadDensity:
+      h.what = misfinite(Real(h.rho)) ? "density not positive" : "density NaN or infinite";
+      break;
+    case kBadEnergy:
+      h.what = misfinite(Real(h.e)) ? "energy negative" : "energy NaN or infinite";
+      break;
+    case kBadPressure:
+      h.what = "pressure NaN or infinite";
+      break;
+    default: {
+      const int node[3] = {h.cell[0] + (top & 1), h.cell[1] + (top >> 1 & 1),
+                           h.cell[2] + (top >> 2 & 1)};
+      h.what = std::string("velocity_") + "xyz"[what - kBadVelocityX] +
+               " NaN or infinite at node (" + std::to_string(node[0]) + ", " +
+               std::to_string(node[1]) + ", " + std::to_string(node[2]) + ")";
+    }
+  }
   return h;
 }
 

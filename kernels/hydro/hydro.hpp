@@ -97,7 +97,9 @@ struct State {
 struct TimeStep {
   Real dt = 0;
   std::array<int, 3> cell{{-1, -1, -1}};  // global index of the limiting cell
-  std::string limit;                      // "cfl", "divergence", "growth", "max", "end"
+  // "cfl" (per axis), "courant_sum" (the unsplit remap's sum over the axes), "growth", "max",
+  // "end"; the driver adds "initial" (the first step held at time.dt_initial)
+  std::string limit;
 };
 
 struct Totals {

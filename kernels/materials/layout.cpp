@@ -330,15 +330,23 @@ double MaterialState::bytes() const {
          sizeof(int) * double(compact_.mixed.extent(0));
 }
 
-long MaterialState::first_bad(double vals[3]) const {
+long MaterialState::first_bad(int& material, int& what) const {
   const Geometry g = mesh_.geometry();
   const long nx = mesh_.global_cells(0), ny = mesh_.global_cells(1);
   const int ng = Mesh::ng;
   const int hx = ng + mesh_.owned_cells(0), hy = ng + mesh_.owned_cells(1),
             hz = ng + mesh_.owned_cells(2);
-  auto bad = [] KOKKOS_FUNCTION(Real r, Real e) {
-    return !(r > 0) || !(e >= 0) || !misfinite(r) || !misfinite(e);
+  // key = (cell * kMaxMaterials + m) * 4 + what: the minimum is the lowest cell, then the
+  // lowest material, then the first bad quantity (what: 0 density not positive, 1 density
+  // non-finite, 2 energy negative, 3 energy non-finite)
+  auto code = [] KOKKOS_FUNCTION(Real r, Real e) {
+    if (!misfinite(r)) return 1;
+    if (!(r > 0)) return 0;
+    if (!misfinite(e)) return 3;
+    if (!(e >= 0)) return 2;
+    return -1;
   };
+  constexpr long kM = kMaxMaterials;
   long first = LONG_MAX;
   if (kind_ == LayoutKind::Dense) {
     const DenseDev d = dense_;
@@ -346,11 +354,13 @@ long MaterialState::first_bad(double vals[3]) const {
     Kokkos::parallel_reduce(
         "matter::check", Policy3({ng, ng, ng}, {hx, hy, hz}),
         KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-          for (int m = 0; m < nmat; ++m)
-            if (d.alpha(m, i, j, k) > 0 && bad(d.rho(m, i, j, k), d.e(m, i, j, k))) {
-              const long id = g.global_cell(i, j, k, nx, ny);
-              if (id < acc) acc = id;
-            }
+          for (int m = 0; m < nmat; ++m) {
+            if (!(d.alpha(m, i, j, k) > 0)) continue;
+            const int c = code(d.rho(m, i, j, k), d.e(m, i, j, k));
+            if (c < 0) continue;
+            const long key = (g.global_cell(i, j, k, nx, ny) * kM + m) * 4 + c;
+            if (key < acc) acc = key;
+          }
         },
         Kokkos::Min<long>(first));
   } else {
@@ -363,18 +373,30 @@ long MaterialState::first_bad(double vals[3]) const {
           const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
           if (i < ng || i >= hx || j < ng || j >= hy || k < ng || k >= hz) return;
           const int f = d.first(i, j, k);
-          for (int q = f; q < f + d.nm(i, j, k); ++q)
-            if (bad(d.srho(q), d.se(q))) {
-              const long id = g.global_cell(i, j, k, nx, ny);
-              if (id < acc) acc = id;
-            }
+          for (int q = f; q < f + d.nm(i, j, k); ++q) {
+            const int c = code(d.srho(q), d.se(q));
+            if (c < 0) continue;
+            const long key = (g.global_cell(i, j, k, nx, ny) * kM + d.smat(q)) * 4 + c;
+            if (key < acc) acc = key;
+          }
         },
         Kokkos::Min<long>(first));
   }
   long global = LONG_MAX;
   MPI_Allreduce(&first, &global, 1, MPI_LONG, MPI_MIN, mesh_.comm());
-  vals[0] = vals[1] = vals[2] = 0;
-  return global;
+  if (global == LONG_MAX) return LONG_MAX;
+  what = int(global % 4);
+  material = int((global / 4) % kM);
+  return global / (4 * kM);
+}
+
+long MaterialState::first_bad(double vals[3]) const {
+  int material = 0, what = 0;
+  const long cell = first_bad(material, what);
+  vals[0] = cell == LONG_MAX ? 0 : material;
+  vals[1] = cell == LONG_MAX ? 0 : what;
+  vals[2] = 0;
+  return cell;
 }
 
 }  // namespace mp::mat

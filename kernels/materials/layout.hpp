@@ -235,7 +235,11 @@ class MaterialState {
   long slots() const;
   double bytes() const;
   // First owned cell (global linear index, or LONG_MAX) holding a material with non-positive
-  // or non-finite density, negative or non-finite energy; fills `vals` with (m, rho, e).
+  // or non-finite density, negative or non-finite energy (global over the ranks); sets
+  // `material` to the lowest such material of that cell and `what` to its first bad quantity:
+  // 0 density not positive, 1 density non-finite, 2 energy negative, 3 energy non-finite.
+  long first_bad(int& material, int& what) const;
+  // The same, with (material, what, 0) in `vals` (the form tests/test_multimat.cpp calls).
   long first_bad(double vals[3]) const;
 
  private:

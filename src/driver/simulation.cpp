@@ -430,19 +430,21 @@ RunResult Simulation::run() {
 void Simulation::write_summary(const RunResult& r) const {
   if (mesh_->rank() != 0) return;
   const double cc = double(mesh_->global_cell_count()) * double(r.cycles);
+  // JSON has no NaN or infinity: a run that went non-physical writes them as null
+  const auto N = [](double x) { return json_number(x); };
   std::ostringstream js;
   js.precision(17);
   auto totals = [&](const hydro::Totals& t) {
     std::ostringstream o;
     o.precision(17);
-    o << "{\"mass\": " << t.mass << ", \"momentum\": [" << t.momentum[0] << ", " << t.momentum[1]
-      << ", " << t.momentum[2] << "], \"internal_energy\": " << t.internal
-      << ", \"kinetic_energy\": " << t.kinetic << ", \"total_energy\": " << t.total();
+    o << "{\"mass\": " << N(t.mass) << ", \"momentum\": [" << N(t.momentum[0]) << ", "
+      << N(t.momentum[1]) << ", " << N(t.momentum[2]) << "], \"internal_energy\": " << N(t.internal)
+      << ", \"kinetic_energy\": " << N(t.kinetic) << ", \"total_energy\": " << N(t.total());
     if (!t.material_mass.empty()) {
       o << ", \"material_mass\": {";
       for (std::size_t m = 0; m < t.material_mass.size(); ++m)
         o << (m ? ", " : "") << "\"" << json_escape(scene_.materials[m].name)
-          << "\": " << t.material_mass[m];
+          << "\": " << N(t.material_mass[m]);
       o << "}";
     }
     o << "}";
@@ -457,9 +459,9 @@ void Simulation::write_summary(const RunResult& r) const {
      << "  \"threads_per_rank\": " << ExecSpace().concurrency() << ",\n"
      << "  \"real\": \"" << (sizeof(Real) == 8 ? "double" : "float") << "\",\n"
      << "  \"cells\": [" << mesh_->global_cells(0) << ", " << mesh_->global_cells(1) << ", "
-     << mesh_->global_cells(2) << "],\n  \"cycles\": " << r.cycles << ",\n  \"time\": " << r.time
-     << ",\n  \"wall_seconds\": " << r.wall
-     << ",\n  \"cell_cycles_per_second\": " << (r.wall > 0 ? cc / r.wall : 0)
+     << mesh_->global_cells(2) << "],\n  \"cycles\": " << r.cycles << ",\n  \"time\": " << N(r.time)
+     << ",\n  \"wall_seconds\": " << N(r.wall)
+     << ",\n  \"cell_cycles_per_second\": " << N(r.wall > 0 ? cc / r.wall : 0)
      << ",\n  \"modules\": [";
   const auto mods = modules();
   for (std::size_t i = 0; i < mods.size(); ++i)
@@ -467,17 +469,17 @@ void Simulation::write_summary(const RunResult& r) const {
   const double dm = r.end.mass - r.start.mass;
   const double de = r.end.total() - r.start.total();
   js << "],\n  \"start\": " << totals(r.start) << ",\n  \"end\": " << totals(r.end)
-     << ",\n  \"mass_change_relative\": " << (r.start.mass != 0 ? dm / r.start.mass : 0)
+     << ",\n  \"mass_change_relative\": " << N(r.start.mass != 0 ? dm / r.start.mass : 0)
      << ",\n  \"total_energy_change_relative\": "
-     << (r.start.total() != 0 ? de / r.start.total() : 0) << ",\n  \"files\": [";
+     << N(r.start.total() != 0 ? de / r.start.total() : 0) << ",\n  \"files\": [";
   for (std::size_t i = 0; i < r.files.size(); ++i)
     js << (i ? ", " : "") << "\"" << json_escape(r.files[i]) << "\"";
   js << "]";
   if (!r.ok)
     js << ",\n  \"failure\": {\"what\": \"" << json_escape(r.health.what) << "\", \"cell\": ["
        << r.health.cell[0] << ", " << r.health.cell[1] << ", " << r.health.cell[2]
-       << "], \"cycle\": " << r.cycles << ", \"density\": " << r.health.rho
-       << ", \"energy\": " << r.health.e << ", \"pressure\": " << r.health.p << "}";
+       << "], \"cycle\": " << r.cycles << ", \"density\": " << N(r.health.rho)
+       << ", \"energy\": " << N(r.health.e) << ", \"pressure\": " << N(r.health.p) << "}";
   js << "\n}\n";
   const std::string path = settings_.output_dir + "/summary.json";
   const std::string tmp = path + ".tmp";
