@@ -103,10 +103,19 @@ TEST(Sod, WavePositions) {
   EXPECT_NEAR(x_contact, contact, 3.0 * p.dx);
   EXPECT_NEAR(x_head, head, 3.0 * p.dx);
   // The plateau between tail and contact holds the exact star density to 1 %.
+  double worst = 0;
+  int cells = 0;
   for (std::size_t i = 0; i < p.x.size(); ++i)
     if (p.x[i] > tail + 4 * p.dx && p.x[i] < contact - 6 * p.dx) {
       EXPECT_NEAR(p.rho[i], kSod.rho_star_left(), 0.01 * kSod.rho_star_left()) << p.x[i];
+      worst = std::max(worst, std::abs(p.rho[i] / kSod.rho_star_left() - 1));
+      ++cells;
     }
+  std::printf(
+      "Sod star plateau: %d cells, exact rho* %.5f, largest relative deviation %.3e "
+      "(bound 1e-2)\n",
+      cells, kSod.rho_star_left(), worst);
+  EXPECT_GE(cells, 60);  // tail + 4 dx .. contact - 6 dx: 0.18 wide, 70 cells at 400
 }
 
 TEST(Sod, SameAlongEveryAxis) {
@@ -187,15 +196,40 @@ TEST(Conservation, ClosedBoxMassToRoundOff) {
   ASSERT_TRUE(r.result.ok);
   const double dm = (r.result.end.mass - r.result.start.mass) / r.result.start.mass;
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
+  // x-momentum: the box starts at rest, and until a wave reaches a wall (t = 0.2: rarefaction
+  // head at 0.263, shock at 0.850) the only net force is the pressure of the two wall cells,
+  // which keep their initial state: p_L on the wall at x = 0, p_R on the wall at x = 1. The
+  // nodal forces of the Lagrangian step telescope to exactly that, and the remap moves momentum
+  // between nodes without creating any, so P_x(t) = (p_L - p_R) A t, A = 0.01 x 0.01.
+  const Mesh& m = r.sim->mesh();
+  const auto p = test::gather(m, r.sim->hydro().state().p, Centering::Cell);
+  const int nx = m.global_cells(0);
+  const double p_left = p[0], p_right = p[nx - 1];
+  const double area = 0.01 * 0.01;
+  const double impulse = (p_left - p_right) * area * r.result.time;
+  const double px = r.result.end.momentum[0];
+  // Round-off: every cycle rounds each node's velocity a few times (acceleration, remap
+  // quotient), each time by at most eps/2 of that node's momentum. Sod's flow is all in +x, so
+  // sum |m u| = P_x <= the impulse; over N cycles |P_x - impulse| <= k eps N impulse, k = 8
+  // roundings per node and cycle (4 in the acceleration, 4 in the remap's update). This is
+  // the worst case, every rounding of one sign; roundings of random sign cancel, and the
+  // observed difference is about 1/100 of it (2.4e-15 relative against 3.4e-13, 193 cycles).
+  const double bound = 8 * test::kEps * double(r.result.cycles) * std::abs(impulse);
   std::printf(
-      "closed box: relative mass change %.3e, total energy change %.3e, momentum x "
-      "%.3e\n",
-      dm, de, r.result.end.momentum[0]);
+      "closed box: relative mass change %.3e, total energy change %.3e\n"
+      "  x-momentum %.17e, wall impulse (p_L %.17g - p_R %.17g) A t = %.17e\n"
+      "  difference %.3e (relative %.3e), round-off bound %.3e over %ld cycles\n"
+      "  y-momentum %.3e, z-momentum %.3e\n",
+      dm, de, px, p_left, p_right, impulse, px - impulse, (px - impulse) / impulse, bound,
+      r.result.cycles, r.result.end.momentum[1], r.result.end.momentum[2]);
   EXPECT_LT(std::abs(dm), test::roundoff(1e-13));
   // The KE fix returns only the dissipated kinetic energy; the energy the limiter creates stays
   // (docs/numerics.md, step 6): observed +1.8e-5. The bound guards that balance.
   EXPECT_LT(std::abs(de), 1e-4);
-  EXPECT_LT(std::abs(r.result.end.momentum[1]), test::roundoff(1e-14));
+  // the wall cells hold the initial state: so do cells far from the waves (x = 0.125, 0.94)
+  EXPECT_EQ(p_left, p[nx / 8]);
+  EXPECT_EQ(p_right, p[nx - 1 - nx / 16]);
+  EXPECT_LE(std::abs(px - impulse), bound);
 }
 
 TEST(Extremes, LeBlancStaysPositive) {
@@ -205,9 +239,19 @@ TEST(Extremes, LeBlancStaysPositive) {
   const Profile p = profile_x(r);
   const double rmin = *std::min_element(p.rho.begin(), p.rho.end());
   const double emin = *std::min_element(p.e.begin(), p.e.end());
-  std::printf("LeBlanc: %ld cycles, min rho %.3e, min e %.3e\n", r.result.cycles, rmin, emin);
-  EXPECT_GT(rmin, 0);
-  EXPECT_GT(emin, 0);
+  std::printf("LeBlanc: %ld cycles, min rho %.17g, min e %.17g\n", r.result.cycles, rmin, emin);
+  // Positivity itself is the health check's (ASSERT_TRUE(ok) above). What it does not see: the
+  // exact solution never goes below the undisturbed right state (rho = 1e-3, e = 1e-7; the
+  // shock raises both, the rarefaction and the contact stay far above), so any undershoot of
+  // the scheme, at the shock foot or in the near-vacuum right state, makes a new minimum. The
+  // minima must be that state to round-off: the remap of the resting state rounds it by an ulp
+  // or so per cycle (observed +7 ulps in rho, -1 ulp in e; bound 1e-15 relative, about 4.5 ulps
+  // in double, 2^29 times that in float).
+  const double tol = test::roundoff(1e-15);
+  std::printf("LeBlanc minima relative to the right state: rho %+.2e, e %+.2e (bound -%.1e)\n",
+              rmin / 1e-3 - 1, emin / 1e-7 - 1, tol);
+  EXPECT_GE(rmin, 1e-3 * (1 - tol));
+  EXPECT_GE(emin, 1e-7 * (1 - tol));
   // Exact shock: x = 3 + 6 * 0.8291 = 7.975. Staggered schemes run the LeBlanc shock ahead
   // at coarse resolution (the contact's internal-energy error); seen here: 0.37 ahead at 360
   // cells and 0.18 at 720, i.e. first-order convergence. The bound is for 360 cells.
@@ -228,7 +272,26 @@ TEST(Extremes, Problem123StaysPositive) {
   const exact::Riemann rs({1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 1.4, 1.4);
   std::printf("123: %ld cycles, min rho %.3e (exact centre %.3e), min e %.3e\n", r.result.cycles,
               rmin, rs.rho_star_left(), emin);
-  EXPECT_GT(rmin, 0);
-  EXPECT_GT(emin, 0);
+  // Positivity itself is the health check's (ASSERT_TRUE(ok) above). The exact solution has
+  // its minimum density and internal energy in the star state between the two rarefactions'
+  // tails, x in 0.5 -+ c* t: the scheme's minima must lie there too, not at a spurious
+  // undershoot elsewhere; and its lowest internal energy within 10 % of the exact e* (staggered
+  // schemes err at this near-vacuum centre; observed -3.7 % at 200 cells, the bound 2.7x that).
+  // The centre density is printed, not asserted: 42 % low at 200 cells, the known weakness of
+  // such schemes at the 123 centre, with no verified bound yet.
+  const auto at_min = [&](const std::vector<double>& f) {
+    return p.x[std::min_element(f.begin(), f.end()) - f.begin()];
+  };
+  const double x_rho = at_min(p.rho), x_e = at_min(p.e);
+  const double c_star = std::sqrt(1.4 * rs.p_star() / rs.rho_star_left());
+  const double tail = c_star * 0.15;  // star region: |x - 0.5| <= tail
+  const double e_exact = rs.p_star() / (0.4 * rs.rho_star_left());
+  std::printf(
+      "123: min rho at x = %.4f, min e at x = %.4f, exact star region %.4f..%.4f; min e %.4e "
+      "vs exact e* %.4e (%+.1f %%)\n",
+      x_rho, x_e, 0.5 - tail, 0.5 + tail, emin, e_exact, 100 * (emin / e_exact - 1));
+  EXPECT_NEAR(x_rho, 0.5, tail);
+  EXPECT_NEAR(x_e, 0.5, tail);
+  EXPECT_NEAR(emin / e_exact, 1.0, 0.10);
   EXPECT_LT(l1_sod(p, rs, 0.5, 0.15), 0.05);
 }
