@@ -9,6 +9,10 @@
 // rules in the order x, y, z is this composition. A reflective wall node of a field with parity
 // -1 along that axis is 0 (and so is every ghost copied from it).
 //
+// Every Halo's bytes_sent() equals, exactly, the bytes the exchanges it ran must send (ng layers
+// of the whole extent of the other two axes, per field, to each side with a neighbour rank):
+// nothing at all with walls on every face on one rank.
+//
 // Assertions are collective: errors are counted locally, summed over the ranks, and checked on
 // every rank; the first few bad entries are printed with the rank to stderr.
 #include <gtest/gtest.h>
@@ -209,6 +213,34 @@ long exchange_and_check(const Mesh& mesh, Halo& halo, const Layout& L,
   return bad;
 }
 
+// Bytes one exchange of `nfields` fields of layout L sends from this rank, from the definition
+// of the exchange (not from halo.cpp): along each axis, to each side with a neighbour rank (a
+// periodic rank can be its own), ng layers of the whole extent of the other two axes, ghosts
+// included, per field; nothing towards a physical boundary.
+double expected_bytes(const Mesh& mesh, const Layout& L, int nfields) {
+  double bytes = 0;
+  for (int d = 0; d < 3; ++d) {
+    double slab = Mesh::ng;
+    for (int a = 0; a < 3; ++a)
+      if (a != d) {
+        const auto r = mesh.range(L.along(a), Region::All, a);
+        slab *= r[1] - r[0];
+      }
+    for (int s = 0; s < 2; ++s)
+      if (!mesh.physical_boundary(d, s)) bytes += nfields * slab * sizeof(Real);
+  }
+  return bytes;
+}
+
+// Every rank's bytes_sent() equals its expected count exactly; returns the ranks that differ.
+long wrong_byte_counts(const Halo& halo, double expected, const std::string& label) {
+  const bool ok = halo.bytes_sent() == expected;
+  if (!ok)
+    std::fprintf(stderr, "[rank %d] %s: bytes sent %.0f, expected %.0f\n", world_rank(),
+                 label.c_str(), halo.bytes_sent(), expected);
+  return sum_over_ranks(ok ? 0 : 1);
+}
+
 MeshSpec spec_of(std::array<int, 3> cells, const Bc& bc, std::array<int, 3> ranks = {{0, 0, 0}}) {
   MeshSpec s;
   s.cells = cells;
@@ -232,12 +264,15 @@ void check_mesh(const MeshSpec& spec, const std::vector<Layout>& layouts,
                 const std::vector<std::vector<FieldDef>>& sets) {
   Mesh mesh(spec, MPI_COMM_WORLD);
   Halo halo(mesh);
+  double bytes = 0;
   for (const auto& L : layouts)
     for (const auto& defs : sets) {
       std::string label = mesh_label(mesh) + " " + L.name + " x" + std::to_string(defs.size());
       const long total = sum_over_ranks(exchange_and_check(mesh, halo, L, defs, label));
       EXPECT_EQ(total, 0) << label;
+      bytes += expected_bytes(mesh, L, int(defs.size()));
     }
+  EXPECT_EQ(wrong_byte_counts(halo, bytes, mesh_label(mesh)), 0) << mesh_label(mesh);
 }
 
 const std::vector<std::array<int, 3>> kSizes{{{13, 11, 9}}, {{10, 7, 6}}, {{6, 14, 5}}};
@@ -308,10 +343,14 @@ TEST(Halo, ReusesBuffersAndRepeats) {
   Mesh mesh(spec_of({{13, 11, 9}}, bc), MPI_COMM_WORLD);
   Halo halo(mesh);
   long bad = 0;
+  double bytes = 0;
   const std::vector<std::vector<FieldDef>> sets{
       {{0, kEven}}, kParities.back(), {{5, {{1, -1, 1}}}}, kParities.back()};
   for (const auto& L : {kCell, kNode, kAllLayouts[3]})
-    for (const auto& defs : sets) bad += exchange_and_check(mesh, halo, L, defs, "reuse");
+    for (const auto& defs : sets) {
+      bad += exchange_and_check(mesh, halo, L, defs, "reuse");
+      bytes += expected_bytes(mesh, L, int(defs.size()));
+    }
 
   HaloField hf;
   hf.view = mesh.new_field("g", Centering::Cell);
@@ -327,7 +366,12 @@ TEST(Halo, ReusesBuffersAndRepeats) {
   for (size_t n = 0; n < h.size(); ++n)
     if (h.data()[n] != once.data()[n] && bad++ < 6)
       std::fprintf(stderr, "[rank %d] repeat: entry %zu changed\n", world_rank(), n);
-  EXPECT_GT(halo.bytes_sent(), world_size() > 1 ? 0.0 : -1.0);
+  // x is periodic: even one rank sends (to itself) on every exchange
+  bytes += 2 * expected_bytes(mesh, kCell, 1);
+  EXPECT_GT(bytes, 0.0);
+  std::printf("reuse: rank %d sent %.0f bytes (expected %.0f)\n", world_rank(), halo.bytes_sent(),
+              bytes);
+  EXPECT_EQ(wrong_byte_counts(halo, bytes, "reuse"), 0);
   EXPECT_EQ(sum_over_ranks(bad), 0);
 }
 
@@ -345,6 +389,27 @@ TEST(Halo, RefusesMixedLayouts) {
   } catch (const mp::RunError&) {
   }
   halo.exchange({});  // nothing to do, and no communication
+  EXPECT_EQ(sum_over_ranks(bad), 0);
+  // neither the refused exchange nor the empty one sent anything
+  EXPECT_EQ(wrong_byte_counts(halo, 0.0, "refused and empty exchanges"), 0);
+}
+
+TEST(Halo, NoNeighbourNoCommunication) {
+  // Walls on every face: a rank sends only to neighbour ranks, so one rank sends nothing at
+  // all, and a rank of a split sends exactly its faces' slabs (expected_bytes, > 0 then).
+  const Bc bc{{{{kR, kO}}, {{kO, kR}}, {{kR, kR}}}};
+  Mesh mesh(spec_of({{10, 7, 6}}, bc), MPI_COMM_WORLD);
+  Halo halo(mesh);
+  long bad = 0;
+  for (const auto& L : {kCell, kNode})
+    bad += exchange_and_check(mesh, halo, L, kParities.back(), "walls");
+  const double bytes = expected_bytes(mesh, kCell, 4) + expected_bytes(mesh, kNode, 4);
+  std::printf("walls only: rank %d sent %.0f bytes (expected %.0f)\n", world_rank(),
+              halo.bytes_sent(), bytes);
+  if (world_size() == 1) {
+    EXPECT_EQ(halo.bytes_sent(), 0.0);
+  }
+  EXPECT_EQ(wrong_byte_counts(halo, bytes, "walls"), 0);
   EXPECT_EQ(sum_over_ranks(bad), 0);
 }
 
