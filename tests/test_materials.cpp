@@ -93,3 +93,57 @@ TEST(MaterialDecks, LibraryNamesAndParametersAreChecked) {
   EXPECT_EQ(s.materials[0].params.at("gamma0"), 2.2);
   EXPECT_EQ(s.materials[0].params.at("c0"), materials::find_material("copper")->param("c0"));
 }
+
+// The Mie-Grueneisen entries of the library against the sources their comments cite, the
+// values written here as each source prints them (its own units), converted here: a library
+// value that drifted from its source (a typo, a km/s -> cm/us slip) fails. The conversion is a
+// decimal shift done in double and rounded to Real, so the comparison allows 1 ulp of Real.
+// Independent check of the transcriptions: the copper and 6061-T6 rows also appear, with the
+// same rho0, C0, S1 and Gamma0, in the Steinberg-sourced material files of the Uintah code
+// (src/StandAlone/inputs/MPM/MaterialData/SCGMaterials/, in SI units).
+TEST(Materials, HugoniotParametersEqualTheirSources) {
+  struct Row {
+    const char* name;
+    const char* source;
+    double rho0;  // g/cm^3
+    double c0;    // in the source's unit, converted by `to_cm_per_us`
+    double s, gamma0;
+    double to_cm_per_us;
+  };
+  const char* kSteinberg =
+      "D. J. Steinberg, Equation of state and strength properties of selected materials, "
+      "UCRL-MA-106439 (LLNL, 1991; change 1, 1996), C0 in cm/us";
+  const char* kMcQueen =
+      "R. G. McQueen, S. P. Marsh, J. W. Taylor, J. N. Fritz, W. J. Carter, in R. Kinslow (ed.), "
+      "High-Velocity Impact Phenomena, Academic Press, 1970, appendix, C0 in km/s";
+  const char* kMeyers =
+      "M. A. Meyers, Dynamic Behavior of Materials, Wiley, 1994, ch. 4 Hugoniot table, C0 in km/s";
+  const std::vector<Row> rows = {
+      {"copper", kSteinberg, 8.93, 0.394, 1.489, 2.02, 1.0},          // OFHC
+      {"aluminium_6061", kSteinberg, 2.703, 0.524, 1.40, 1.97, 1.0},  // 6061-T6
+      {"steel_4340", kSteinberg, 7.81, 0.4578, 1.33, 1.67, 1.0},      // Rc 38
+      {"steel_304", kMcQueen, 7.896, 4.569, 1.490, 2.17, 0.1},        // 304 stainless
+      {"tungsten", kMcQueen, 19.224, 4.029, 1.237, 1.54, 0.1},
+      {"water", kMeyers, 1.000, 1.65, 1.92, 0.1, 0.1},
+  };
+  const double ulp = test::kEps;
+  for (const Row& r : rows) {
+    const materials::MaterialData* m = materials::find_material(r.name);
+    ASSERT_NE(m, nullptr) << r.name;
+    ASSERT_EQ(m->eos, "mie_gruneisen") << r.name;
+    const double want[4] = {r.rho0, r.c0 * r.to_cm_per_us, r.s, r.gamma0};
+    const double have[4] = {m->rho0, m->param("c0"), m->param("s"), m->param("gamma0")};
+    const char* key[4] = {"rho0", "c0", "s", "gamma0"};
+    std::printf("%-15s rho0 %.4f c0 %.5f cm/us s %.4f Gamma0 %.3f  (source: %s)\n", r.name, have[0],
+                have[1], have[2], have[3], r.source);
+    for (int q = 0; q < 4; ++q)
+      EXPECT_NEAR(have[q], double(Real(want[q])), ulp * want[q])
+          << r.name << " " << key[q] << " differs from " << r.source;
+    // the entry's citation names the same source
+    const std::string cited = m->citation;
+    const std::string author = r.source == kSteinberg ? "Steinberg"
+                               : r.source == kMcQueen ? "McQueen"
+                                                      : "Meyers";
+    EXPECT_NE(cited.find(author), std::string::npos) << r.name << ": " << cited;
+  }
+}
