@@ -56,12 +56,20 @@ TEST(Hugoniot, MieGrueneisenMaterialsAgainstARigidWall) {
         "max plateau deviation %.2e, shock at %.4f cm (exact %.4f)\n",
         name, p_mean, p_exact, p_mean / p_exact - 1, rho_mean, rho_exact, rho_mean / rho_exact - 1,
         p_dev, x_num, x_shock);
-    EXPECT_NEAR(p_mean / p_exact, 1.0, 2e-3) << name;
-    EXPECT_NEAR(rho_mean / rho_exact, 1.0, 1e-3) << name;
-    // Post-shock ringing: metals stay within 1e-3 of the jump, water (far more compressible at
-    // this speed) within 1.4e-2; the plateau mean is within 1.2e-4 for all of them.
-    EXPECT_LT(p_dev, 2e-2) << name;
-    EXPECT_NEAR(x_num, x_shock, 2 * dx) << name;
+    // The scheme conserves mass, momentum and energy, so behind a steady shock it must hold the
+    // Rankine-Hugoniot state whatever the viscosity; the plateau mean errs only by the start-up
+    // transient (observed 4.8e-5 to 6.9e-5 in p for the metals, 1.2e-4 for water; 1.3e-5 to
+    // 2.2e-5 in rho): bounds 3e-4 and 1e-4, 2.5x and 4.5x the largest.
+    EXPECT_NEAR(p_mean / p_exact, 1.0, 3e-4) << name;
+    EXPECT_NEAR(rho_mean / rho_exact, 1.0, 1e-4) << name;
+    // Post-shock ringing (largest single-cell deviation): metals up to 1.3e-3 (copper), water,
+    // far more compressible at this speed, 1.37e-2: bounds 3e-3 and 2e-2.
+    EXPECT_LT(p_dev, std::string(name) == "water" ? 2e-2 : 3e-3) << name;
+    // The half-jump crossing of a front spread over a few cells locates it to within half a
+    // cell of the exact one: observed 0.06 dx (metals) and 0.16 dx (water). The bound is the
+    // resolution, not this run's error (8x the metals'); a shock speed wrong by 1 % would be
+    // 1.2 dx off here.
+    EXPECT_NEAR(x_num, x_shock, 0.5 * dx) << name;
   }
 }
 
