@@ -75,7 +75,10 @@ TEST(Sod, ConvergesToExactSolution) {
   const double o1 = std::log2(err[0] / err[1]), o2 = std::log2(err[1] / err[2]);
   std::printf("Sod L1(rho): %d %.4e  %d %.4e  %d %.4e  observed order %.3f %.3f\n", sizes[0],
               err[0], sizes[1], err[1], sizes[2], err[2], o1, o2);
-  EXPECT_LT(err[0], 6.0e-3);
+  // The order is the verification (below); the absolute errors are guarded 30 % above this
+  // scheme's own (5.40e-3 at 100 cells, 1.53e-3 at 400): no external reference gives L1 for
+  // this scheme, so these two bounds are regression margins, not accuracy claims.
+  EXPECT_LT(err[0], 7.0e-3);
   EXPECT_LT(err[2], 2.0e-3);
   // Discontinuities cap the order near 1 for any scheme; below 0.6 would mean a first-order
   // error somewhere in the smooth parts.
@@ -99,9 +102,27 @@ TEST(Sod, WavePositions) {
       "Sod positions: shock %.4f (exact %.4f), contact %.4f (%.4f), rarefaction head "
       "%.4f (%.4f), tail exact %.4f, dx %.4f\n",
       x_shock, shock, x_contact, contact, x_head, head, tail, p.dx);
-  EXPECT_NEAR(x_shock, shock, 1.5 * p.dx);
-  EXPECT_NEAR(x_contact, contact, 3.0 * p.dx);
-  EXPECT_NEAR(x_head, head, 3.0 * p.dx);
+  // The rarefaction head is a kink: the exact profile reaches 0.99 a little behind it. That
+  // exact crossing, found by bisection, is what the scheme's 0.99 crossing is compared with.
+  double lo = head, hi = tail;
+  for (int it = 0; it < 60; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (kSod.sample((mid - x0) / t).rho > 0.99 ? lo : hi) = mid;
+  }
+  const double head_099 = 0.5 * (lo + hi);
+  std::printf(
+      "Sod position errors in cells: shock %+.3f, contact %+.3f, rho = 0.99 behind the "
+      "head %+.3f (exact crossing %.4f)\n",
+      (x_shock - shock) / p.dx, (x_contact - contact) / p.dx, (x_head - head_099) / p.dx, head_099);
+  // A front smeared over a few cells is located by its mid-level crossing to within half a
+  // cell; observed 0.10 dx (shock) and 0.17 dx (contact), so the bounds (0.5 dx) are 3-5x the
+  // errors, set by the resolution; a wave speed 1 % wrong would put the shock 0.7 dx off.
+  EXPECT_NEAR(x_shock, shock, 0.5 * p.dx);
+  EXPECT_NEAR(x_contact, contact, 0.5 * p.dx);
+  // The head is a kink, which the scheme spreads diffusively ahead of itself over several cells
+  // (no steepening holds it): the 0.99 level is reached 1.9 dx before the exact one. 3 dx,
+  // 1.6x that, bounds the spreading at this resolution.
+  EXPECT_NEAR(x_head, head_099, 3 * p.dx);
   // The plateau between tail and contact holds the exact star density to 1 %.
   double worst = 0;
   int cells = 0;
@@ -144,7 +165,11 @@ TEST(Sod, SameAlongEveryAxis) {
         dmax = std::max(
             {dmax, std::abs(x - y), std::abs(x - z), std::abs(xe - ye), std::abs(xe - ze)});
       }
-  std::printf("Sod x/y/z max difference: %.3e\n", dmax);
+  std::printf("Sod x/y/z max difference: %.3e over %ld cycles\n", dmax, rx.result.cycles);
+  // Not bitwise: the sweep order (x,y,z then z,y,x) puts the active axis first, last or in the
+  // middle, so the same operations round in a different order. Worst case a few ulps of the
+  // O(1) fields per cycle: 4 eps x 126 cycles = 1.1e-13, the bound 1e-13 (observed 8.4e-15,
+  // random-sign roundings cancelling).
   EXPECT_LE(dmax, test::roundoff(1e-13));
 }
 
