@@ -310,7 +310,56 @@ TEST(Plic, YoungsNormalOfAPlanarInterface) {
     plic::youngs_normal(a, m);
     EXPECT_LT(angle_deg(n, m), 1e-6);
   }
-  // Random normals, random plane through the centre cell: the angle to the exact normal.
+  // Random planes through the centre cell: the code computes Youngs' formula, n = -g / |g| with
+  // g_d the (1,2,1) x (1,2,1)-weighted difference of the fractions across the stencil along d,
+  // divided by the cell size (Youngs 1982; DESIGN.md step 7). Evaluated here independently, in
+  // double and in another order, it must give the same direction to round-off.
+  std::mt19937_64 rng2(13);
+  double max_formula = 0;
+  for (int t = 0; t < 500; ++t) {
+    const Vec n = {s(rng2), s(rng2), s(rng2)};
+    const Vec h = t % 2 ? Vec{1, 2, 0.5} : Vec{1, 1, 1};
+    const Vec p = {u(rng2), u(rng2), u(rng2)};
+    plane_stencil(n, dot(n, {p[0] * h[0], p[1] * h[1], p[2] * h[2]}), h, a);
+    plic::youngs_normal(a, Real(h[0]), Real(h[1]), Real(h[2]), m);
+    Vec g = {0, 0, 0};
+    const double w[3] = {1, 2, 1};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) {
+          const double c = double(a[i][j][k]);
+          g[0] += (i - 1) * w[j] * w[k] * c;
+          g[1] += (j - 1) * w[i] * w[k] * c;
+          g[2] += (k - 1) * w[i] * w[j] * c;
+        }
+    const Vec want = {-g[0] / h[0], -g[1] / h[1], -g[2] / h[2]};
+    // the angle from its sine, |want x m| / (|want| |m|): acos near 1 resolves only 1e-6 deg
+    const Vec mm = {double(m[0]), double(m[1]), double(m[2])};
+    const Vec x = {want[1] * mm[2] - want[2] * mm[1], want[2] * mm[0] - want[0] * mm[2],
+                   want[0] * mm[1] - want[1] * mm[0]};
+    const double sine = std::sqrt(dot(x, x) / (dot(want, want) * dot(mm, mm)));
+    max_formula = std::max(max_formula, std::asin(std::min(1.0, sine)) * 180 / M_PI);
+  }
+  std::printf("youngs_normal against the formula evaluated in double: max angle %.2e deg\n",
+              max_formula);
+  // Round-off: the code sums 9 weighted differences per axis (8 roundings of eps/2 of the
+  // largest partial sum, which can exceed the component when the terms cancel) and normalises
+  // in Real: 16 eps rad bounds the direction (2e-13 deg in double, 1.1e-4 deg in float); the
+  // observed 2.7e-14 deg is 2 eps, the roundings mostly cancelling.
+  EXPECT_LT(max_formula, 16 * mp::test::kEps * 180 / M_PI);
+}
+
+// Regression pin, not verification: the angle between Youngs' normal and the exact normal of
+// 2000 random planes (fixed seed) through a 3x3x3 stencil. Youngs' gradient is first order in
+// the normal, exact only for symmetric planes (verified above); no reference gives these
+// statistics, so they are this code's own, observed max 3.72 and mean 1.11 degrees on cubes,
+// max 7.44 degrees on 1:2:0.5 cells, pinned 7-13 % above to catch a change of the stencil or
+// its weights (which would move them by far more).
+TEST(PlicRegressionPin, YoungsNormalAngleStatistics) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0, 1), s(-1, 1);
+  Real a[3][3][3];
+  Real m[3];
   double max_angle = 0, mean_angle = 0, max_angle_aniso = 0;
   const int trials = 2000;
   for (int t = 0; t < trials; ++t) {
@@ -329,15 +378,13 @@ TEST(Plic, YoungsNormalOfAPlanarInterface) {
     plic::youngs_normal(a, Real(h[0]), Real(h[1]), Real(h[2]), m);
     max_angle_aniso = std::max(max_angle_aniso, angle_deg(n, m));
   }
-  // Measured (this seed): max 3.72, mean 1.12 degrees on cubes; max 7.10 degrees on 1:2:0.5
-  // cells. Youngs' gradient is first order in the normal: exact only for symmetric planes.
-  EXPECT_LT(max_angle, 4.0);
-  EXPECT_LT(mean_angle, 1.25);
-  EXPECT_LT(max_angle_aniso, 7.5);
   std::printf(
-      "youngs_normal: %d planes, angle to exact normal max %.2f mean %.2f deg; "
+      "youngs_normal (pin): %d planes, angle to exact normal max %.2f mean %.2f deg; "
       "1:2:0.5 cells max %.2f deg\n",
       trials, max_angle, mean_angle, max_angle_aniso);
+  EXPECT_LT(max_angle, 4.0);
+  EXPECT_LT(mean_angle, 1.25);
+  EXPECT_LT(max_angle_aniso, 8.0);
 }
 
 TEST(Plic, FluxVolume) {
