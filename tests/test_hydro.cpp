@@ -318,5 +318,10 @@ TEST(Extremes, Problem123StaysPositive) {
   EXPECT_NEAR(x_rho, 0.5, tail);
   EXPECT_NEAR(x_e, 0.5, tail);
   EXPECT_NEAR(emin / e_exact, 1.0, 0.10);
-  EXPECT_LT(l1_sod(p, rs, 0.5, 0.15), 0.05);
+  // L1 of the density against the exact solution, the near-vacuum centre's deficit most of it:
+  // observed 6.4e-3 at 200 cells; the bound 1e-2 (1.6x) is a margin over this scheme's own
+  // error, as for Sod's absolute L1 (was 0.05, 7.8x).
+  const double l1 = l1_sod(p, rs, 0.5, 0.15);
+  std::printf("123: L1(rho) %.4e (bound 1e-2)\n", l1);
+  EXPECT_LT(l1, 1e-2);
 }
