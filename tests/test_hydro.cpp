@@ -247,10 +247,14 @@ TEST(Conservation, ClosedBoxMassToRoundOff) {
       "  y-momentum %.3e, z-momentum %.3e\n",
       dm, de, px, p_left, p_right, impulse, px - impulse, (px - impulse) / impulse, bound,
       r.result.cycles, r.result.end.momentum[1], r.result.end.momentum[2]);
+  // Mass: the split remap's three sweeps round each cell's mass once each per cycle (eps/2
+  // relative), 3 x 193 x eps/2 = 6.4e-14 if every rounding had one sign; bound 1e-13 (observed
+  // 1.9e-14: signs mix).
   EXPECT_LT(std::abs(dm), test::roundoff(1e-13));
   // The KE fix returns only the dissipated kinetic energy; the energy the limiter creates stays
-  // (docs/numerics.md, step 6): observed +1.8e-5. The bound guards that balance.
-  EXPECT_LT(std::abs(de), 1e-4);
+  // (docs/numerics.md, step 6): observed +1.81e-5 (double and float). The bound, 1.7x that, is
+  // a margin over this scheme's own balance (a regression guard, no theory gives the number).
+  EXPECT_LT(std::abs(de), 3e-5);
   // the wall cells hold the initial state: so do cells far from the waves (x = 0.125, 0.94)
   EXPECT_EQ(p_left, p[nx / 8]);
   EXPECT_EQ(p_right, p[nx - 1 - nx / 16]);
