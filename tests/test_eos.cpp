@@ -37,10 +37,10 @@ using mp::test::roundoff;
 // de = p/rho^2 drho with step h = 5e-5 rho in double. Truncation O(h^2) dominates: it fell 4x
 // when h was halved from 1e-4 (largest 9.0e-7 -> 2.25e-7, quartz_high_pressure strongly
 // compressed, where the Hugoniot bends most; metals 1e-7, gases 2e-12 where round-off, ~1e-12,
-// is all); the bound 1e-6 is 4.4x the largest. A float build evaluates p to 6e-8, so it takes h = 3e-3 rho (gases and
-// products: up to 3.6e-5 observed), or half the distance to a solid's branch switch at rho0
-// (1e-3 rho0 away in the table below, where Gamma rho e of up to 1.8 Mbar against the small
-// step leaves up to 8.2e-4 observed, quartz_high_pressure).
+// is all); the bound 1e-6 is 4.4x the largest. A float build evaluates p to 6e-8, so it takes h =
+// 3e-3 rho (gases and products: up to 3.6e-5 observed), or half the distance to a solid's branch
+// switch at rho0 (1e-3 rho0 away in the table below, where Gamma rho e of up to 1.8 Mbar against
+// the small step leaves up to 8.2e-4 observed, quartz_high_pressure).
 const double kC2Tol = by_precision(1e-6, 1.5e-3);
 const double kStep = by_precision(5e-5, 3e-3);
 
