@@ -75,20 +75,59 @@ TEST(Elastic, PureShearFollowsHooke) {
   }
 }
 
-// One step of simple shear (v_x = gdot y: D_xy = gdot/2 plus a spin) from s = 0: the spin has
-// nothing to rotate, s_xy = 2 G (gdot/2) dt to round-off.
-TEST(Elastic, SimpleShearFirstStepIsHookeExactly) {
+// One step of simple shear (v_x = gdot y: D_xy = gdot/2 and spin W_xy = gdot/2) from s = 0.
+// Forward form: the spin has nothing to rotate, s_xy = 2 G (gdot/2) dt to round-off. Rotated
+// form: the first half increment h = G dt gdot/2 turns with the Cayley rotation about z by
+// phi = -2 atan(gdot dt/4), so s_xy = h (1 + cos 2 phi), s_xx = -s_yy = -h sin 2 phi.
+TEST(Elastic, SimpleShearFirstStep) {
   const Real G = 0.477, gdot = 2e-3, dt = 0.05;
   const st::Mat3 L = gradient({0, 2e-3, 0, 0, 0, 0, 0, 0, 0});
   const st::Sym se = st::elastic_trial_euler(st::Sym{}, L, G, dt);
   const st::Sym sr = st::elastic_trial_rotated(st::Sym{}, L, G, dt);
   const Real expect = 2 * G * (gdot / 2) * dt;
-  std::printf("simple shear one step: s_xy euler %.17g rotated %.17g expect %.17g\n", se.xy, sr.xy,
-              expect);
+  const double h = double(G) * dt * gdot / 2, phi = -2 * std::atan(double(gdot) * dt / 4);
+  std::printf(
+      "simple shear one step: s_xy euler %.17g (2 G D_xy dt %.17g), rotated xy %.17g "
+      "(%.17g) xx %.6g (%.6g)\n",
+      se.xy, expect, sr.xy, h * (1 + std::cos(2 * phi)), sr.xx, -h * std::sin(2 * phi));
   EXPECT_REAL_EQ(se.xy, expect);
-  EXPECT_REAL_EQ(sr.xy, expect);
   EXPECT_EQ(st::trace(se), 0);
-  EXPECT_EQ(st::trace(sr), 0);
+  EXPECT_NEAR(sr.xy, h * (1 + std::cos(2 * phi)), 8 * kEps * h);
+  EXPECT_NEAR(sr.xx, -h * std::sin(2 * phi), 8 * kEps * h);
+  EXPECT_NEAR(sr.yy, h * std::sin(2 * phi), 8 * kEps * h);
+  EXPECT_NEAR(st::trace(sr), 0, 8 * kEps * h);
+}
+
+// Simple shear to gamma = gdot t = 1 with no yield: the Jaumann-rate hypoelastic solution is
+// s_xx = -s_yy = G (1 - cos gamma), s_xy = G sin gamma (ds_xx/dgamma = s_xy,
+// ds_xy/dgamma = G - s_xx). The rotated update converges at second order, the forward form at
+// first.
+TEST(Elastic, SimpleShearConvergesToTheJaumannSolution) {
+  const Real G = 0.5, gdot = 0.1;  // Mbar, 1/us
+  const double t_end = 1.0 / gdot;
+  const st::Mat3 L = gradient({0, 0.1, 0, 0, 0, 0, 0, 0, 0});
+  const double exact[6] = {
+      G * (1 - std::cos(1.0)), -G * (1 - std::cos(1.0)), 0, G * std::sin(1.0), 0, 0};
+  const std::vector<int> steps = {8, 16, 32, 64};
+  std::vector<double> err_rot, err_eul;
+  for (int n : steps) {
+    st::Sym sr, se;
+    for (int k = 0; k < n; ++k) {
+      sr = st::elastic_trial_rotated(sr, L, G, Real(t_end / n));
+      se = st::elastic_trial_euler(se, L, G, Real(t_end / n));
+    }
+    err_rot.push_back(max_abs_diff(sr, exact) / G);
+    err_eul.push_back(max_abs_diff(se, exact) / G);
+    std::printf("simple shear to gamma 1, %3d steps: rotated err %.3e, euler err %.3e (of G)\n", n,
+                err_rot.back(), err_eul.back());
+  }
+  for (size_t i = 1; i < steps.size(); ++i) {
+    const double q_rot = std::log2(err_rot[i - 1] / err_rot[i]);
+    const double q_eul = std::log2(err_eul[i - 1] / err_eul[i]);
+    std::printf("order %d->%d: rotated %.3f euler %.3f\n", steps[i - 1], steps[i], q_rot, q_eul);
+    EXPECT_NEAR(q_rot, 2.0, 0.15);  // second-order splitting (stress_update.hpp)
+    EXPECT_NEAR(q_eul, 1.0, 0.25);  // forward Euler
+  }
 }
 
 // Uniaxial strain rate D_xx = d: the deviator is 2 G d dt (2/3, -1/3, -1/3), traceless.

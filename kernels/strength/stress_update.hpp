@@ -11,11 +11,12 @@
 //  - elastic_trial_euler: the forward form s_n + dt [2 G D' + W s_n - s_n W] written in the
 //    issue. First order in the rotation: under a pure spin |s| grows by a factor
 //    (1 + O((|W| dt)^2)) per step, so J2 drifts by O(|W| dt) over a fixed angle.
-//  - elastic_trial_rotated (what the cycle should use): s* = Q s_n Q^T + 2 G dt D', with Q the
-//    Cayley (Hughes-Winget) rotation Q = (I - dt/2 W)^-1 (I + dt/2 W), orthogonal to round-off,
-//    so a pure spin keeps every invariant of s exactly and turns it through 2 atan(|w| dt / 2)
-//    per step (second order: |w| dt - (|w| dt)^3 / 12 + ...). With W the spin at the middle of
-//    the step this is the time-centred (midpoint) update of the rotation term.
+//  - elastic_trial_rotated (what the cycle should use): s* = Q (s_n + G dt D') Q^T + G dt D',
+//    with Q the Cayley (Hughes-Winget) rotation Q = (I - dt/2 W)^-1 (I + dt/2 W), orthogonal to
+//    round-off, so a pure spin keeps every invariant of s exactly and turns it through
+//    2 atan(|w| dt / 2) per step (|w| dt - (|w| dt)^3 / 12 + ...); splitting the elastic
+//    increment around the rotation makes the whole update second order for constant L. With L
+//    the velocity gradient at the middle of the step this is the time-centred update.
 // Both keep s symmetric by construction (6 components) and remove the trace round-off leaves.
 //
 // Radial return (perfect plasticity within one step, associated flow):
@@ -87,14 +88,20 @@ KOKKOS_INLINE_FUNCTION Mat3 cayley_rotation(const Mat3& w, Real dt) {
   return q;
 }
 
-// Objective trial deviator: rotate s_n by the Cayley rotation of the step's spin, add the
-// elastic increment 2 G dt D'.
+// Objective, time-centred trial deviator: half the elastic increment G dt D' before the Cayley
+// rotation of the step's spin, half after (a symmetric splitting):
+//   s* = Q (s_n + G dt D') Q^T + G dt D'.
+// Against the exact flow of ds/dt = 2 G D' + W s - s W with constant L this agrees to O(dt^3)
+// per step (rotating the whole increment after the rotation, or not at all, leaves an
+// O(dt^2) error dt^2/2 [W, 2 G D'] per step: first order). A pure spin keeps s's invariants.
 KOKKOS_INLINE_FUNCTION Sym elastic_trial_rotated(const Sym& s, const Mat3& L, Real G, Real dt) {
-  const Sym r = rotate(s, cayley_rotation(spin(L), dt));
   const Sym d = strain_rate_deviator(L);
-  const Real g2dt = 2 * G * dt;
-  return deviator({r.xx + g2dt * d.xx, r.yy + g2dt * d.yy, r.zz + g2dt * d.zz, r.xy + g2dt * d.xy,
-                   r.yz + g2dt * d.yz, r.zx + g2dt * d.zx});
+  const Real gdt = G * dt;
+  const Sym half{s.xx + gdt * d.xx, s.yy + gdt * d.yy, s.zz + gdt * d.zz,
+                 s.xy + gdt * d.xy, s.yz + gdt * d.yz, s.zx + gdt * d.zx};
+  const Sym r = rotate(half, cayley_rotation(spin(L), dt));
+  return deviator({r.xx + gdt * d.xx, r.yy + gdt * d.yy, r.zz + gdt * d.zz, r.xy + gdt * d.xy,
+                   r.yz + gdt * d.yz, r.zx + gdt * d.zx});
 }
 
 struct ReturnResult {
