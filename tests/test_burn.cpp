@@ -418,7 +418,8 @@ TEST(BurnFraction, VolumeBurnAndCombination) {
       double(f_over));
   EXPECT_EQ(f_v0, Real(0));
   EXPECT_EQ(f_exp, Real(0));
-  EXPECT_NEAR(double(f_mid), 0.5, roundoff(1e-15));
+  // v0 - v_mid loses a factor v0 / (v0 - v_cj) ~ 4 to cancellation.
+  EXPECT_NEAR(double(f_mid), 0.5, roundoff(1e-14));
   EXPECT_NEAR(double(f_cj), 1.0, roundoff(1e-15));
   EXPECT_EQ(f_over, Real(1));
 

@@ -5,8 +5,9 @@
 // Units: cm / g / us (kernels/materials/library.hpp): t in us, D in cm/us, lengths in cm,
 // specific volumes in cm^3/g, p in Mbar.
 //
-// Model (programmed burn, as in traditional hydrocode "program burn": Bdzil, Stewart & Jackson,
-// J. Comput. Phys. 174 (2001) 870, sec. 1-2): the explosive cell holds ONE material whose
+// Model (the traditional hydrocode "program burn" that Bdzil, Stewart & Jackson, J. Comput.
+// Phys. 174 (2001) 870, set out to improve; the FLAC3D JWL model documents the same
+// p = lambda P_JWL): the explosive cell holds ONE material whose
 // pressure is the products EOS scaled by its burn fraction F in [0, 1],
 //   p = F P_products(rho, e),
 // e being the specific internal energy including the chemical energy (e = e0 = E0 / rho0 for
@@ -57,8 +58,8 @@ KOKKOS_INLINE_FUNCTION Real cj_specific_volume(Real rho0, Real d_cj, Real p_cj) 
 }
 
 // CJ volume burn fraction: the cell burns as it is compressed from its initial specific volume
-// v0 = 1/rho0 toward v_cj (the classic "beta burn", Mader, Numerical Modeling of Explosives and
-// Propellants, 3rd ed., CRC 2008, ch. 2):
+// v0 = 1/rho0 toward v_cj (the "beta burn" of Mader's Numerical Modeling of Explosives and
+// Propellants; not read here, the formula is the definition):
 //   F = clamp((v0 - v) / (v0 - v_cj), 0, 1).
 KOKKOS_INLINE_FUNCTION Real volume_burn_fraction(Real v, Real v0, Real v_cj) {
   return clamp01((v0 - v) / (v0 - v_cj));

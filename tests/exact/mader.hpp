@@ -3,7 +3,8 @@
 // into x > 0, followed by the self-similar rarefaction (Taylor wave) that brings the products
 // from the CJ state at the front back to the piston's speed.
 // (W. Fickett & W. C. Davis, "Detonation: Theory and Experiment", Univ. of California Press
-// 1979, sec. 2A; the problem as set in LANL's ExactPack, exactpack/solvers/mader, defaults
+// 1979, p. 24, as ExactPack cites it; derived here from the characteristics. The problem as set
+// in LANL's ExactPack, exactpack/solvers/mader, defaults
 // p_cj = 0.3 Mbar, D = 0.8 cm/us, gamma = 3; written here from the theory, not that code.)
 //
 // Strong (p0 = 0) gamma-law detonation: p_cj = rho0 D^2 / (gamma + 1),
@@ -11,7 +12,7 @@
 // heat of reaction q = D^2 / (2 (gamma^2 - 1)) (so the products' e = p / ((gamma - 1) rho)
 // counts q in, as the hydro's e does).
 // Behind the front the C- Riemann invariant u - 2c/(gamma - 1) = J is that of the CJ state, and
-// the C+ characteristics are the rays x/t = u + c from the origin, so for u_p t < ... :
+// the C+ characteristics are the rays x/t = u + c from the origin, so:
 //   u = (2 x/t + (gamma - 1) J) / (gamma + 1),  c = x/t - u           (fan, x_p t < x < D t),
 //   u = u_p, c = c_cj + (gamma - 1)/2 (u_p - u_cj)                   (x < x_p t),
 // with x_p = u_p + c at the fan's tail; p = p_cj (c/c_cj)^(2 gamma/(gamma - 1)),
