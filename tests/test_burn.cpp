@@ -534,6 +534,51 @@ TEST(BurnFraction, MixedPressureAndSoundSpeed) {
   }
 }
 
+// The mixture closure p = (1 - F) P_u(rho, e - e0) + F P_products(rho, e): the unreacted solid's
+// pressure at F = 0, the products' at F = 1, and c^2 at frozen F against an isentropic finite
+// difference. The unreacted solid is a FIXTURE, not a material: a Mie-Grueneisen solid with
+// magnitudes typical of an HMX-based explosive (rho0 1.84, c0 0.25 cm/us, s 2, Gamma0 1), since
+// the library has no cited unreacted-explosive EOS yet.
+TEST(BurnFraction, MixtureClosure) {
+  const auto* m = mp::materials::find_material("pbx9404_products");
+  const auto prod = mp::materials::make_eos(*m);
+  const auto solid =
+      mp::eos::make_eos(mp::eos::MieGruneisen{Real(1.84), Real(0.25), Real(2), Real(1)});
+  const Real e0 = Real(m->param("E0") / m->rho0);
+  const Real rho = Real(1.84 * 1.2), e = e0 + Real(0.004);  // shocked, not yet burnt
+  EXPECT_EQ(mp::burn::he_pressure_mixed(solid, prod, e0, Real(0), rho, e),
+            solid.pressure(rho, e - e0));
+  EXPECT_EQ(mp::burn::he_pressure_mixed(solid, prod, e0, Real(1), rho, e), prod.pressure(rho, e));
+  // Unburnt at rest: no pressure (the solid is referenced at rho0, e = 0).
+  EXPECT_NEAR(double(mp::burn::he_pressure_mixed(solid, prod, e0, Real(0), Real(1.84), e0)), 0.0,
+              roundoff(1e-15));
+  for (double f : {0.0, 0.5, 1.0}) {
+    // Step 1e-4 rho in double: the solid's p is stiffer in rho than the products' (p''' larger).
+    const double step = by_precision(1e-4, 3e-3) * double(rho);
+    const double p0 = double(mp::burn::he_pressure_mixed(solid, prod, e0, Real(f), rho, e));
+    auto p_of = [&](double r) {
+      const double dr = r - double(rho);
+      return double(
+          mp::burn::he_pressure_mixed(solid, prod, e0, Real(f), Real(r),
+                                      Real(double(e) + p0 / (double(rho) * double(rho)) * dr)));
+    };
+    const double fd = (p_of(double(rho) + step) - p_of(double(rho) - step)) / (2 * step);
+    const double c2 = double(mp::burn::he_sound_speed2_mixed(solid, prod, e0, Real(f), rho, e));
+    std::printf("  mixture F = %.1f: p = %.5f Mbar, c^2 = %.6f, isentropic FD %.6f (rel. %.1e)\n",
+                f, p0, c2, fd, fd / c2 - 1);
+    // Double: O(step^2) truncation, observed below 1e-7; float: p rounding / step, observed
+    // 6e-5 (bound 1e-3, as in MixedPressureAndSoundSpeed).
+    EXPECT_NEAR(fd / c2, 1.0, by_precision(1e-5, 1e-3)) << "F = " << f;
+  }
+  // At F = 0 and 1 the closure's c^2 is the phase's own.
+  EXPECT_NEAR(double(mp::burn::he_sound_speed2_mixed(solid, prod, e0, Real(0), rho, e)) /
+                  double(solid.sound_speed2(rho, e - e0)),
+              1.0, roundoff(1e-14));
+  EXPECT_NEAR(double(mp::burn::he_sound_speed2_mixed(solid, prod, e0, Real(1), rho, e)) /
+                  double(prod.sound_speed2(rho, e)),
+              1.0, roundoff(1e-14));
+}
+
 // The point functions run in a named device kernel and give the host's numbers bit for bit.
 TEST(BurnFraction, DeviceKernelMatchesHost) {
   const auto* m = mp::materials::find_material("comp_b_products");

@@ -100,17 +100,22 @@ KOKKOS_INLINE_FUNCTION Real update_burn_fraction(const BurnParams& b, Real f_old
   return f;
 }
 
-// (dP/de)_rho of a products EOS. Every EOS of eos.hpp is linear in e at fixed rho, so for the
-// kinds not written out the unit secant is exact up to round-off.
-KOKKOS_INLINE_FUNCTION Real products_dp_de(const eos::Eos& products, Real rho) {
-  switch (products.kind) {
-    case eos::kIdealGas:
+// (dP/de)_rho of an EOS record: every EOS of eos.hpp is linear in e at fixed rho.
+KOKKOS_INLINE_FUNCTION Real eos_dp_de(const eos::Eos& m, Real rho) {
+  switch (m.kind) {
     case eos::kStiffenedGas:
-      return (products.params[0] - 1) * rho;  // (gamma - 1) rho
+      return (m.params[0] - 1) * rho;  // (gamma - 1) rho
+    case eos::kMieGruneisen:
+      return m.params[3] * m.params[0];  // gamma0 rho0 (eos/mie_gruneisen.hpp)
+    case eos::kPolynomial: {
+      Real p, dpr, dpe;
+      m.polynomial().evaluate(rho, Real(0), p, dpr, dpe);
+      return dpe;
+    }
     case eos::kJwl:
-      return products.params[5] * rho;  // omega rho
+      return m.params[5] * rho;  // omega rho
     default:
-      return products.pressure(rho, Real(1)) - products.pressure(rho, Real(0));
+      return (m.params[0] - 1) * rho;  // ideal gas: (gamma - 1) rho
   }
 }
 
@@ -129,10 +134,33 @@ KOKKOS_INLINE_FUNCTION Real he_pressure(const eos::Eos& products, Real f, Real r
 KOKKOS_INLINE_FUNCTION Real he_sound_speed2(const eos::Eos& products, Real f, Real rho, Real e) {
   const Real p = products.pressure(rho, e);
   return f * products.sound_speed2(rho, e) -
-         f * (1 - f) * p * products_dp_de(products, rho) / (rho * rho);
+         f * (1 - f) * p * eos_dp_de(products, rho) / (rho * rho);
 }
 KOKKOS_INLINE_FUNCTION Real he_sound_speed(const eos::Eos& products, Real f, Real rho, Real e) {
   return msqrt(mmax(he_sound_speed2(products, f, rho, e), eos::kSoundSpeed2Floor));
+}
+
+// The alternative closure, for an explosive whose unreacted solid has an EOS of its own: the
+// two phases share (rho, e), the unreacted one measuring its energy from the unburnt state,
+//   p = (1 - f) P_u(rho, e - e0) + f P_p(rho, e),
+// so unburnt explosive (f = 0) carries the shocks its solid EOS gives it (e = e0 at rest:
+// P_u(rho0, 0) = 0 for a solid referenced at rho0). No pressure equilibrium between the phases
+// (a simplification). c^2 at frozen f from the same definition, with p_rho = sum w_i P_i,rho
+// and p_e = sum w_i P_i,e:
+//   c^2 = sum_i w_i (c_i^2 - P_i P_i,e / rho^2) + p p_e / rho^2.
+KOKKOS_INLINE_FUNCTION Real he_pressure_mixed(const eos::Eos& unreacted, const eos::Eos& products,
+                                              Real e0, Real f, Real rho, Real e) {
+  return (1 - f) * unreacted.pressure(rho, e - e0) + f * products.pressure(rho, e);
+}
+KOKKOS_INLINE_FUNCTION Real he_sound_speed2_mixed(const eos::Eos& unreacted,
+                                                  const eos::Eos& products, Real e0, Real f,
+                                                  Real rho, Real e) {
+  const Real pu = unreacted.pressure(rho, e - e0), pp = products.pressure(rho, e);
+  const Real eu = eos_dp_de(unreacted, rho), ep = eos_dp_de(products, rho);
+  const Real r2 = rho * rho;
+  const Real p = (1 - f) * pu + f * pp, pe = (1 - f) * eu + f * ep;
+  return (1 - f) * (unreacted.sound_speed2(rho, e - e0) - pu * eu / r2) +
+         f * (products.sound_speed2(rho, e) - pp * ep / r2) + p * pe / r2;
 }
 
 }  // namespace mp::burn
