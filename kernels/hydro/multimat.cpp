@@ -440,9 +440,13 @@ void Hydro::mm_ke_fix() {
   mm_->for_cells(
       "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         const Real sum = corner_sum(kel, i, j, k);
-        if (!(sum > 0)) return;
-        // the same specific energy to every material keeps the cell average consistent
-        const Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+        // the same specific energy to every material keeps the cell average consistent; where
+        // it is taken away (sum < 0), no material gives more than ke_fix_floor allows
+        Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (m.alpha > 0) de = mmax(de, ke_fix_floor(*m.e));
+        }
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (m.alpha > 0) *m.e += de;

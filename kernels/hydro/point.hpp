@@ -44,6 +44,17 @@ KOKKOS_INLINE_FUNCTION Real pdv_energy(Real e, Real p, Real q, Real dv, Real mas
   return e - (p + q) * dv / mass;
 }
 
+// The kinetic-energy fix (DeBar; Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992): a
+// cell receives `de`, its share (per unit mass) of the kinetic energy the momentum remap took
+// from its 8 nodes. The whole discrepancy is returned, both signs, so total energy is conserved
+// to round-off; where the remap made kinetic energy (de < 0) a material gives at most half of
+// its specific internal energy, which keeps near-vacuum cells positive (the 123 problem). Only
+// that clamp, when it acts, leaves energy unconserved. Returns the least `de` a material of
+// specific energy e may take.
+KOKKOS_INLINE_FUNCTION Real ke_fix_floor(Real e) {
+  return -Real(0.5) * e;
+}
+
 // Mass and internal-energy flux through a face with volume flux f (signed along the axis) out of
 // a donor cell of volume `pre`, from van Leer face values of density (Courant number |f|/pre)
 // and of specific energy (the mass Courant number). up / donor / down ordered along the wind.

@@ -252,9 +252,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     Kokkos::parallel_for(
         "remap::ke_fix", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real sum = corner_sum(kel, i, j, k);
-          // Only dissipation is returned: where the limiter made kinetic energy (sum < 0),
-          // taking it from near-vacuum cells would drive their energy negative.
-          if (sum > 0) e(i, j, k) += Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+          const Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+          e(i, j, k) += mmax(de, ke_fix_floor(e(i, j, k)));
         });
   }
   std::swap(s_.u, s_.ub);
