@@ -15,6 +15,7 @@ namespace {
 struct Fields {
   std::vector<double> rho, e, u, v, w;
   std::vector<std::vector<double>> fractions;  // per material (multi-material scenes)
+  std::vector<std::vector<double>> strength;   // stress deviator and plastic strain (if any)
   long cycles = 0;
 };
 
@@ -37,6 +38,11 @@ Fields run_on(const Scene& scene, int nranks) {
     if (const mat::MaterialState* mm = r.sim->hydro().materials())
       for (int q = 0; q < mm->nmat(); ++q)
         f.fractions.push_back(test::gather(m, mm->fraction(q), Centering::Cell));
+    if (const strength::Strength* st = r.sim->hydro().strength()) {
+      for (const Field3& c : st->stress())
+        f.strength.push_back(test::gather(m, c, Centering::Cell));
+      f.strength.push_back(test::gather(m, st->plastic_strain(), Centering::Cell));
+    }
     f.cycles = r.result.cycles;
     r.sim.reset();
     MPI_Comm_free(&sub);
@@ -79,11 +85,15 @@ void compare_rank_counts(const Scene& scene) {
     EXPECT_EQ(mismatches(one.fractions[q], four.fractions[q]), 0) << "fraction " << q << ": 1 vs 4";
     for (double x : one.fractions[q]) mixed += (x > 0 && x < 1) ? 1 : 0;
   }
+  for (std::size_t q = 0; q < one.strength.size(); ++q) {
+    EXPECT_EQ(mismatches(one.strength[q], two.strength[q]), 0) << "strength " << q << ": 1 vs 2";
+    EXPECT_EQ(mismatches(one.strength[q], four.strength[q]), 0) << "strength " << q << ": 1 vs 4";
+  }
   std::printf(
       "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end; 1, 2, "
       "4 ranks bitwise identical in %zu fields\n",
       scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed,
-      5 + one.fractions.size());
+      5 + one.fractions.size() + one.strength.size());
   if (!one.fractions.empty()) {
     EXPECT_GT(mixed, 0);
   }
@@ -130,4 +140,20 @@ TEST(Decomposition, TriplePointWithPressureRelaxationIdenticalOn1_2_4Ranks) {
 TEST(Decomposition, SphereAdvectionIdenticalOn1_2_4Ranks) {
   compare_rank_counts(
       test::load_scene("sphere_advection.yaml", {"mesh.cells=[13,12,11]", "time.end=1.0"}));
+}
+
+// Strength (kernels/strength/module.hpp): a sphere of aluminium driven obliquely through the
+// block shears it in 3-D, so every deviator component and the plastic strain cross the rank
+// boundaries (halo parities of the shear components included, at the reflective walls).
+TEST(Decomposition, StrengthIdenticalOn1_2_4Ranks) {
+  auto scene = test::load_scene(
+      "elastic_wave.yaml",
+      {"mesh.cells=[24,10,9]", "mesh.hi=[2,1,0.9]", "boundaries.x=reflective",
+       "materials.0.strength.model=elastic_plastic", "materials.0.strength.yield=0.0029",
+       "materials.0.strength.shear_modulus=0.276",
+       "regions=[{material: al, shape: all, density: 2.703, energy: 1.0e-5}, {material: al, shape: "
+       "sphere, center: [1, 0.5, 0.45], radius: 0.3, density: 2.703, energy: 1.0e-5, velocity: "
+       "[0.02, 0.01, -0.005]}]",
+       "time.end=0.5"});
+  compare_rank_counts(scene);
 }

@@ -266,10 +266,14 @@ Totals Hydro::totals() const {
 }
 
 std::vector<OutputField> Hydro::output_fields() const {
-  return {{"density", Centering::Cell, s_.rho},  {"energy", Centering::Cell, s_.e},
-          {"pressure", Centering::Cell, s_.p},   {"sound_speed", Centering::Cell, s_.c},
-          {"viscosity", Centering::Cell, s_.q},  {"velocity_x", Centering::Node, s_.u},
-          {"velocity_y", Centering::Node, s_.v}, {"velocity_z", Centering::Node, s_.w}};
+  std::vector<OutputField> f{
+      {"density", Centering::Cell, s_.rho},  {"energy", Centering::Cell, s_.e},
+      {"pressure", Centering::Cell, s_.p},   {"sound_speed", Centering::Cell, s_.c},
+      {"viscosity", Centering::Cell, s_.q},  {"velocity_x", Centering::Node, s_.u},
+      {"velocity_y", Centering::Node, s_.v}, {"velocity_z", Centering::Node, s_.w}};
+  if (strength_)
+    for (const OutputField& o : strength_->output_fields()) f.push_back(o);
+  return f;
 }
 
 }  // namespace mp::hydro

@@ -14,6 +14,7 @@
 #include "materials/layout.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
+#include "strength/module.hpp"
 
 namespace mp::hydro {
 
@@ -74,6 +75,10 @@ struct Options {
   int relax_iterations = 20;
   // (1e-10, or 64 ulps where Real cannot hold that: 7.6e-6 in float)
   Real relax_tol = Real(std::max(1e-10, 64.0 * double(std::numeric_limits<Real>::epsilon())));
+  // Strength of a single-material scene's material (kernels/strength/module.hpp): the
+  // flow-stress model and the reference density; kind kNoStrength leaves the module out.
+  strength::FlowStress strength;
+  Real strength_rho0 = 1;
 };
 
 struct State {
@@ -129,6 +134,9 @@ class Hydro {
   // The per-material state of a multi-material scene, or nullptr.
   mat::MaterialState* materials() { return mm_.get(); }
   const mat::MaterialState* materials() const { return mm_.get(); }
+  // The strength module, or nullptr when no material has strength.
+  strength::Strength* strength() { return strength_.get(); }
+  const strength::Strength* strength() const { return strength_.get(); }
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
@@ -172,6 +180,7 @@ class Hydro {
   eos::Eos eos_;
   mat::MaterialSet mats_;
   std::unique_ptr<mat::MaterialState> mm_;
+  std::unique_ptr<strength::Strength> strength_;
   State s_;
 };
 

@@ -54,12 +54,20 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     mm_ = std::make_unique<mat::MaterialState>(mesh, opt.layout, mats_.n, s_.rho, s_.e, s_.p,
                                                s_.p_half);
   }
+  if (opt.strength.kind != strength::kNoStrength) {
+    if (mm_) throw RunError("strength in a multi-material scene is not supported yet (issue #12)");
+    strength_ = std::make_unique<strength::Strength>(mesh, opt.strength, opt.strength_rho0);
+  }
 }
 
 void Hydro::exchange_cells() {
   // the material exchange also writes the ghosts' cell averages
   if (mm_) return mm_->exchange();
-  halo_.exchange({{s_.rho, Centering::Cell, {1, 1, 1}}, {s_.e, Centering::Cell, {1, 1, 1}}});
+  std::vector<HaloField> f{{s_.rho, Centering::Cell, {1, 1, 1}},
+                           {s_.e, Centering::Cell, {1, 1, 1}}};
+  if (strength_)
+    for (const HaloField& h : strength_->halo_fields()) f.push_back(h);
+  halo_.exchange(f);
 }
 
 void Hydro::exchange_nodes(const Field3& u, const Field3& v, const Field3& w) {
@@ -84,6 +92,7 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
         p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
         c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
       });
+  if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
 }
 
 void Hydro::viscosity() {
@@ -163,6 +172,14 @@ Health Hydro::lagrange(Real dt) {
           const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
           ph(i, j, k) = eos.pressure_cut(mass / v_half, e_half);
         });
+  // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
+  const bool has_strength = strength_ != nullptr;
+  std::array<Field3, 3> fs;
+  if (has_strength) {
+    strength_->predictor(s_.u, s_.v, s_.w, rho, e, ph, dt);
+    fs = strength_->force();
+  }
+  auto fsx = fs[0], fsy = fs[1], fsz = fs[2];
 
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
   auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
@@ -183,7 +200,13 @@ Health Hydro::lagrange(Real dt) {
               mass += rho(ci, cj, ck);
             }
         mass *= Real(0.125) * vol;
-        const Real ax = fxs * axf / mass, ay = fys * ayf / mass, az = fzs * azf / mass;
+        Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
+        if (has_strength) {
+          force_x += fsx(i, j, k);
+          force_y += fsy(i, j, k);
+          force_z += fsz(i, j, k);
+        }
+        const Real ax = force_x / mass, ay = force_y / mass, az = force_z / mass;
         ub(i, j, k) = u(i, j, k) + Real(0.5) * dt * ax;
         vb(i, j, k) = v(i, j, k) + Real(0.5) * dt * ay;
         wb(i, j, k) = w(i, j, k) + Real(0.5) * dt * az;
@@ -200,6 +223,8 @@ Health Hydro::lagrange(Real dt) {
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
   volume_fluxes(ub, vb, wb, dt);
+  // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
+  if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
   if (mm_)
     mm_corrector(vol);
   else

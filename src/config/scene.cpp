@@ -1,6 +1,7 @@
 #include "config/scene.hpp"
 
 #include "materials/library.hpp"
+#include "strength/library.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -64,11 +65,53 @@ const std::map<std::string, std::vector<std::string>> kEosParams = {
 const std::vector<std::string> kEosKinds = {"ideal_gas", "stiffened_gas", "mie_gruneisen",
                                             "polynomial", "jwl"};
 
+// materials[].strength: {model: elastic_plastic, shear_modulus: G, yield: Y} (Mbar), or
+// {model: johnson_cook | steinberg_guinan[, library: name][, shear_modulus: G]} from the cited
+// sets of kernels/strength/library.hpp (library defaults to the material's own library name).
+void read_strength(const DeckNode& n, MaterialSpec& spec) {
+  n.expect_keys({"model", "library", "shear_modulus", "yield"});
+  StrengthSpec& st = spec.strength;
+  st.model = n.get_enum("model", {"elastic_plastic", "johnson_cook", "steinberg_guinan"});
+  st.library = n.get_string("library", spec.library);
+  const strength::StrengthData* data =
+      st.library.empty() ? nullptr : strength::find_strength(st.library);
+  if (n.has("library") && !data)
+    n.child("library").fail("no strength data for '" + st.library + "'; did you mean '" +
+                            nearest(st.library, strength::strength_names()) + "'?");
+  st.shear_modulus = n.get_real("shear_modulus", 1e-9, 1e3, 0);
+  if (st.model == "elastic_plastic") {
+    st.yield = n.get_real("yield", 0, 1e3);
+    if (!(st.shear_modulus > 0) && !(data && data->G0 > 0))
+      n.fail("elastic_plastic strength needs 'shear_modulus' (Mbar)" +
+             std::string(data ? "" : " or a library material with a cited one"));
+    return;
+  }
+  if (n.has("yield")) n.child("yield").fail("'yield' belongs to model elastic_plastic");
+  if (!data)
+    n.fail("model " + st.model +
+           " takes its parameters from the strength library: give "
+           "'library' (one of: " +
+           [] {
+             std::string l;
+             for (const auto& x : strength::strength_names()) l += (l.empty() ? "" : ", ") + x;
+             return l;
+           }() +
+           ")");
+  if (st.model == "johnson_cook" && !data->has_jc)
+    n.child("model").fail("'" + st.library + "' has no Johnson-Cook set in the library");
+  if (st.model == "steinberg_guinan" && !data->has_sg)
+    n.child("model").fail("'" + st.library + "' has no Steinberg-Guinan set in the library");
+  if (st.model == "johnson_cook" && !(data->G0 > 0) && !(st.shear_modulus > 0))
+    n.fail("'" + st.library + "' has no cited shear modulus: give 'shear_modulus' (Mbar)");
+  if (st.model == "steinberg_guinan" && !(spec.rho0 > 0))
+    n.fail("steinberg_guinan needs the material's reference density 'rho0'");
+}
+
 void read_materials(const DeckNode& root, Scene& s) {
   const DeckNode list = root.child("materials");
   if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of materials");
   for (const DeckNode& m : list.items()) {
-    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma", "p_min"});
+    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma", "p_min", "strength"});
     MaterialSpec spec;
     spec.name = m.get_string("name");
     for (const auto& other : s.materials)
@@ -116,8 +159,17 @@ void read_materials(const DeckNode& root, Scene& s) {
       spec.has_p_min = true;
       spec.p_min = m.get_real("p_min", -1e3, 0.0);
     }
+    if (m.has("strength")) read_strength(m.child("strength"), spec);
     s.materials.push_back(spec);
   }
+  if (s.materials.size() > 1)
+    for (std::size_t q = 0; q < s.materials.size(); ++q)
+      if (!s.materials[q].strength.model.empty())
+        list[q]
+            .child("strength")
+            .fail(
+                "strength in a multi-material scene is not supported yet (single-material scenes "
+                "only; issue #12)");
   if (s.materials.size() > 16)
     list.fail("a scene holds at most 16 materials, not " + std::to_string(s.materials.size()));
 }

@@ -11,6 +11,14 @@
 
 namespace mp {
 
+// Strength of a material (materials[].strength; kernels/strength/). model "" means none.
+struct StrengthSpec {
+  std::string model;         // "" | elastic_plastic | johnson_cook | steinberg_guinan
+  std::string library;       // strength library entry (kernels/strength/library.hpp)
+  double shear_modulus = 0;  // Mbar (0: the library's)
+  double yield = 0;          // Mbar, elastic_plastic's constant flow stress
+};
+
 struct MaterialSpec {
   std::string name;
   std::string library;  // library entry it starts from ("" for a custom material)
@@ -20,6 +28,7 @@ struct MaterialSpec {
   std::string citation;
   bool has_p_min = false;  // tension cutoff given (materials[].p_min, Mbar, <= 0)
   double p_min = 0;
+  StrengthSpec strength;
 };
 
 struct ShapeSpec {

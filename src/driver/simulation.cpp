@@ -15,6 +15,7 @@
 #include "io/log.hpp"
 #include "materials/geometry.hpp"
 #include "materials/library.hpp"
+#include "strength/library.hpp"
 
 namespace mp {
 
@@ -148,6 +149,27 @@ eos::Eos material_eos(const MaterialSpec& m) {
 
 // Specific internal energy giving pressure p at density rho: every EOS here is affine in e at
 // fixed density, p = p(rho, 0) + (p(rho, 1) - p(rho, 0)) e.
+// The flow-stress model of a material's strength block (kNoStrength when it has none).
+strength::FlowStress material_strength(const MaterialSpec& m) {
+  const StrengthSpec& st = m.strength;
+  strength::FlowStress f;
+  if (st.model.empty()) return f;
+  const strength::StrengthData* data =
+      st.library.empty() ? nullptr : strength::find_strength(st.library);
+  if (st.model == "elastic_plastic") {
+    f.kind = strength::kConstantYield;
+    f.constant = {Real(st.shear_modulus > 0 ? st.shear_modulus : double(data->G0)), Real(st.yield)};
+    return f;
+  }
+  f = strength::make_flow_stress(
+      *data, st.model == "johnson_cook" ? strength::kJohnsonCook : strength::kSteinbergGuinan);
+  if (st.shear_modulus > 0) {
+    f.jc.G0 = Real(st.shear_modulus);
+    f.sg.G0 = Real(st.shear_modulus);
+  }
+  return f;
+}
+
 double energy_for_pressure(const eos::Eos& eos, double rho, double p) {
   const double p0 = double(eos.pressure(Real(rho), Real(0)));
   const double slope = double(eos.pressure(Real(rho), Real(1))) - p0;
@@ -179,6 +201,10 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.min_fraction = Real(hydro::effective_min_fraction(scene_.numerics.min_fraction));
   opt.relax = scene_.numerics.closure == "relaxation";
   opt.relax_iterations = scene_.numerics.relaxation_iterations;
+  if (scene_.materials.size() == 1) {
+    opt.strength = material_strength(scene_.materials[0]);
+    opt.strength_rho0 = Real(scene_.materials[0].rho0 > 0 ? scene_.materials[0].rho0 : 1.0);
+  }
   std::vector<eos::Eos> eos;
   for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
   hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, eos);
@@ -206,6 +232,17 @@ std::vector<std::string> Simulation::modules() const {
       eos += os.str();
     }
     m.push_back(eos + ")");
+    if (!mat.strength.model.empty()) {
+      std::ostringstream os;
+      os << "strength: " << mat.strength.model << " (" << mat.name;
+      if (!mat.strength.library.empty() && mat.strength.model != "elastic_plastic")
+        os << ", library '" << mat.strength.library << "'";
+      const strength::FlowStress f = material_strength(mat);
+      if (f.kind == strength::kConstantYield)
+        os << ", G=" << f.constant.G0 << " Mbar, Y=" << f.constant.Y0 << " Mbar";
+      os << "; Jaumann rate, radial return; fields stress_xx..zx, plastic_strain)";
+      m.push_back(os.str());
+    }
   }
   if (scene_.materials.size() == 1) {
     m.push_back("materials: single material (no mixed cells, no interface reconstruction)");

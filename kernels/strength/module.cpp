@@ -1,0 +1,224 @@
+// The strength module's kernels (module.hpp says what each seam does and why).
+#include "strength/module.hpp"
+
+#include "hydro/point.hpp"
+#include "strength/stress_update.hpp"
+
+namespace mp::strength {
+
+namespace {
+
+// The node-averaged velocity gradient of cell (i, j, k): L_ij = sum_nodes sgn_j u_i r_j, with
+// r_j = 1 / (4 dx_j) and sgn_j = +1 on the cell's high side along j.
+KOKKOS_INLINE_FUNCTION Mat3 cell_gradient(const Field3& u, const Field3& v, const Field3& w, int i,
+                                          int j, int k, Real rx, Real ry, Real rz) {
+  Mat3 L;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const Real sx = a ? Real(1) : Real(-1), sy = b ? Real(1) : Real(-1),
+                   sz = c ? Real(1) : Real(-1);
+        const Real vel[3] = {u(i + a, j + b, k + c), v(i + a, j + b, k + c),
+                             w(i + a, j + b, k + c)};
+        for (int q = 0; q < 3; ++q) {
+          L(q, 0) += sx * vel[q];
+          L(q, 1) += sy * vel[q];
+          L(q, 2) += sz * vel[q];
+        }
+      }
+  for (int q = 0; q < 3; ++q) {
+    L(q, 0) *= rx;
+    L(q, 1) *= ry;
+    L(q, 2) *= rz;
+  }
+  return L;
+}
+
+// The six components of a deviator field at a cell.
+struct SymField {
+  Field3 xx, yy, zz, xy, yz, zx;
+  explicit SymField(const std::array<Field3, 6>& s)
+      : xx(s[0]), yy(s[1]), zz(s[2]), xy(s[3]), yz(s[4]), zx(s[5]) {}
+  KOKKOS_INLINE_FUNCTION Sym get(int i, int j, int k) const {
+    return {xx(i, j, k), yy(i, j, k), zz(i, j, k), xy(i, j, k), yz(i, j, k), zx(i, j, k)};
+  }
+  KOKKOS_INLINE_FUNCTION void set(int i, int j, int k, const Sym& s) const {
+    xx(i, j, k) = s.xx;
+    yy(i, j, k) = s.yy;
+    zz(i, j, k) = s.zz;
+    xy(i, j, k) = s.xy;
+    yz(i, j, k) = s.yz;
+    zx(i, j, k) = s.zx;
+  }
+};
+
+// The flow-stress model's inputs at a cell.
+KOKKOS_INLINE_FUNCTION PointState point_state(const FlowStress& f, Real rho0, Real rho, Real e,
+                                              Real p, Real eps_p, Real eps_dot) {
+  PointState x;
+  x.eps_p = eps_p;
+  x.eps_dot = eps_dot;
+  x.p = p;
+  x.eta = rho / rho0;
+  x.T = f.temperature_of(e);
+  return x;
+}
+
+}  // namespace
+
+Strength::Strength(const Mesh& mesh, const FlowStress& model, Real rho0)
+    : mesh_(mesh), model_(model), rho0_(rho0) {
+  const char* names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  for (int c = 0; c < 6; ++c) {
+    s_[c] = mesh.new_field(std::string("stress_") + names[c], Centering::Cell);
+    s_half_[c] = mesh.new_field(std::string("stress_half_") + names[c], Centering::Cell);
+  }
+  eps_p_ = mesh.new_field("plastic_strain", Centering::Cell);
+  for (int d = 0; d < 3; ++d)
+    force_[d] = mesh.new_field(std::string("stress_force_") + "xyz"[d], Centering::Node);
+  scratch_ = mesh.new_field("strength_remap_scratch", Centering::Cell);
+}
+
+void Strength::stiffen_sound_speed(const Field3& rho, const Field3& e, const Field3& p,
+                                   const Field3& c) const {
+  const FlowStress f = model_;
+  const Real rho0 = rho0_;
+  auto ep = eps_p_;
+  Kokkos::parallel_for(
+      "strength::sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Real r = rho(i, j, k);
+        const Real G =
+            f.shear_modulus(point_state(f, rho0, r, e(i, j, k), p(i, j, k), ep(i, j, k), Real(0)));
+        const Real c0 = c(i, j, k);
+        c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * G / r);
+      });
+}
+
+void Strength::predictor(const Field3& u, const Field3& v, const Field3& w, const Field3& rho,
+                         const Field3& e, const Field3& p_half, Real dt) {
+  const Geometry g = mesh_.geometry();
+  const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
+  const FlowStress f = model_;
+  const Real rho0 = rho0_;
+  const SymField s(s_), sh(s_half_);
+  auto ep = eps_p_;
+  const Real h = Real(0.5) * dt;
+  Kokkos::parallel_for(
+      "strength::predictor", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
+        const PointState x = point_state(f, rho0, rho(i, j, k), e(i, j, k), p_half(i, j, k),
+                                         ep(i, j, k), equivalent_strain_rate(L));
+        const Real G = f.shear_modulus(x);
+        Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
+        radial_return(t, f.yield_stress(x), G);
+        sh.set(i, j, k, t);
+      });
+  // F_i = -sum_j s_ij sgn_j A_j over the node's 8 cells; sgn_j = +1 where the node lies on the
+  // cell's high side along j (the cell below the node along j).
+  const Real ax = g.dx[1] * g.dx[2] * Real(0.25), ay = g.dx[0] * g.dx[2] * Real(0.25),
+             az = g.dx[0] * g.dx[1] * Real(0.25);
+  auto fx = force_[0], fy = force_[1], fz = force_[2];
+  Kokkos::parallel_for(
+      "strength::forces", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        Real F[3] = {0, 0, 0};
+        for (int c = 0; c < 2; ++c)
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) {
+              const Sym q = sh.get(i - 1 + a, j - 1 + b, k - 1 + c);
+              const Real tx = (a == 0 ? ax : -ax), ty = (b == 0 ? ay : -ay),
+                         tz = (c == 0 ? az : -az);
+              F[0] -= q.xx * tx + q.xy * ty + q.zx * tz;
+              F[1] -= q.xy * tx + q.yy * ty + q.yz * tz;
+              F[2] -= q.zx * tx + q.yz * ty + q.zz * tz;
+            }
+        fx(i, j, k) = F[0];
+        fy(i, j, k) = F[1];
+        fz(i, j, k) = F[2];
+      });
+}
+
+void Strength::corrector(const Field3& ub, const Field3& vb, const Field3& wb, const Field3& rho,
+                         const Field3& e, const Field3& p_half, Real dt) {
+  const Geometry g = mesh_.geometry();
+  const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
+  const FlowStress f = model_;
+  const Real rho0 = rho0_;
+  const SymField s(s_), sh(s_half_);
+  auto ep = eps_p_;
+  Kokkos::parallel_for(
+      "strength::corrector", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
+        // the work of the half-step deviator, the power its nodal forces took from the nodes
+        const Sym q = sh.get(i, j, k);
+        const Real power = q.xx * L(0, 0) + q.yy * L(1, 1) + q.zz * L(2, 2) +
+                           q.xy * (L(0, 1) + L(1, 0)) + q.yz * (L(1, 2) + L(2, 1)) +
+                           q.zx * (L(2, 0) + L(0, 2));
+        const Real r = rho(i, j, k), en = e(i, j, k);
+        const PointState x =
+            point_state(f, rho0, r, en, p_half(i, j, k), ep(i, j, k), equivalent_strain_rate(L));
+        const Real G = f.shear_modulus(x);
+        Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, dt);
+        const ReturnResult rr = radial_return(t, f.yield_stress(x), G);
+        s.set(i, j, k, t);
+        ep(i, j, k) += rr.d_eps_p;
+        e(i, j, k) = en + dt * power / r;
+      });
+}
+
+void Strength::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
+                     const Field3& rho, const Field3& pre, const Field3& post, int order) {
+  (void)post;
+  const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
+  auto mfx = mass_flux[0], mfy = mass_flux[1], mfz = mass_flux[2];
+  auto old = scratch_;
+  std::array<Field3, 7> carried = {s_[0], s_[1], s_[2], s_[3], s_[4], s_[5], eps_p_};
+  for (const Field3& phi : carried) {
+    Kokkos::deep_copy(old, phi);
+    Kokkos::parallel_for(
+        "strength::remap", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          // flux of phi through face (fi, fj, fk) normal to d, mass flux m, from its donor
+          auto flux = [&](const Field3& mf, int fi, int fj, int fk, int d) {
+            const Real m = mf(fi, fj, fk);
+            const int sx = d == 0, sy = d == 1, sz = d == 2;
+            const int dn = m > 0 ? -1 : 0, st = m > 0 ? 1 : -1;
+            const int di = fi + dn * sx, dj = fj + dn * sy, dk = fk + dn * sz;
+            const Real sm = mabs(m) / (rho(di, dj, dk) * pre(di, dj, dk));
+            return m * hydro::face_value(old(di - st * sx, dj - st * sy, dk - st * sz),
+                                         old(di, dj, dk),
+                                         old(di + st * sx, dj + st * sy, dk + st * sz), sm, order);
+          };
+          const Real m0 = rho(i, j, k) * pre(i, j, k);
+          // the same sums, in the same order, as the hydro's cell update
+          Real dm = 0, dq = 0;
+          if (ax > 0) {
+            dm += mfx(i, j, k) - mfx(i + 1, j, k);
+            dq += flux(mfx, i, j, k, 0) - flux(mfx, i + 1, j, k, 0);
+          }
+          if (ay > 0) {
+            dm += mfy(i, j, k) - mfy(i, j + 1, k);
+            dq += flux(mfy, i, j, k, 1) - flux(mfy, i, j + 1, k, 1);
+          }
+          if (az > 0) {
+            dm += mfz(i, j, k) - mfz(i, j, k + 1);
+            dq += flux(mfz, i, j, k, 2) - flux(mfz, i, j, k + 1, 2);
+          }
+          phi(i, j, k) = (old(i, j, k) * m0 + dq) / (m0 + dm);
+        });
+  }
+}
+
+std::vector<HaloField> Strength::halo_fields() const {
+  const auto C = Centering::Cell;
+  return {{s_[0], C, {1, 1, 1}},   {s_[1], C, {1, 1, 1}},   {s_[2], C, {1, 1, 1}},
+          {s_[3], C, {-1, -1, 1}}, {s_[4], C, {1, -1, -1}}, {s_[5], C, {-1, 1, -1}},
+          {eps_p_, C, {1, 1, 1}}};
+}
+
+std::vector<OutputField> Strength::output_fields() const {
+  const auto C = Centering::Cell;
+  return {{"stress_xx", C, s_[0]},      {"stress_yy", C, s_[1]}, {"stress_zz", C, s_[2]},
+          {"stress_xy", C, s_[3]},      {"stress_yz", C, s_[4]}, {"stress_zx", C, s_[5]},
+          {"plastic_strain", C, eps_p_}};
+}
+
+}  // namespace mp::strength

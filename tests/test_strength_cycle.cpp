@@ -1,0 +1,282 @@
+// Strength in the hydro cycle (kernels/strength/module.hpp): elastic wave speeds, the
+// elastic-plastic piston against its exact solution, objectivity under rigid rotation, and total
+// energy to round-off with the deviator's work.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "exact/ep_piston.hpp"
+#include "strength/module.hpp"
+#include "support.hpp"
+
+using namespace mp;
+
+namespace {
+
+// Aluminium 6061-T6 as configs/elastic_wave.yaml takes it: Steinberg's Mie-Grueneisen fit
+// (rho0 2.703, c0 0.524, s 1.40, Gamma0 1.97) and G0 = 0.276 Mbar, Y0 = 0.0029 Mbar
+// (UCRL-MA-106439; kernels/materials/library.cpp, kernels/strength/library.hpp).
+constexpr double kRho0 = 2.703, kC0 = 0.524, kS = 1.40, kGamma0 = 1.97, kG = 0.276, kY = 0.0029;
+
+struct Line {
+  std::vector<double> x, rho, p, sxx, u;  // cells (x, rho, p, s_xx) and nodes (u) along j=k=0
+  double dx = 0, t = 0;
+};
+
+Line line_x(const test::Ran& r) {
+  const Mesh& m = r.sim->mesh();
+  const auto& st = r.sim->hydro().state();
+  const int nx = m.global_cells(0);
+  const auto rho = test::gather(m, st.rho, Centering::Cell);
+  const auto p = test::gather(m, st.p, Centering::Cell);
+  const auto u = test::gather(m, st.u, Centering::Node);
+  const auto sxx = test::gather(m, r.sim->hydro().strength()->stress()[0], Centering::Cell);
+  Line l;
+  l.dx = m.dx(0);
+  l.t = r.result.time;
+  for (int i = 0; i < nx; ++i) {
+    l.x.push_back((i + 0.5) * l.dx);
+    l.rho.push_back(rho[i]);
+    l.p.push_back(p[i]);
+    l.sxx.push_back(sxx[i]);
+  }
+  for (int i = 0; i <= nx; ++i) l.u.push_back(u[i]);
+  return l;
+}
+
+// First node from the wall where the velocity falls below `level` (moving away from the wall
+// means more negative here), linearly interpolated.
+double front(const Line& l, double level) {
+  for (std::size_t i = 1; i < l.u.size(); ++i)
+    if (l.u[i] < level && l.u[i - 1] >= level)
+      return (i - 1 + (level - l.u[i - 1]) / (l.u[i] - l.u[i - 1])) * l.dx;
+  return NAN;
+}
+
+// Speed of the elastic wave relative to the material, bar moving at -v0 onto the wall.
+double wave_speed(int cells, const std::vector<std::string>& extra) {
+  std::vector<std::string> o = {"mesh.cells=[" + std::to_string(cells) + ",2,2]"};
+  o.insert(o.end(), extra.begin(), extra.end());
+  auto r = test::run_scene(test::load_scene("elastic_wave.yaml", o));
+  EXPECT_TRUE(r.result.ok) << r.result.health.what;
+  const Line l = line_x(r);
+  const double v0 = 1e-4;
+  return front(l, -0.5 * v0) / l.t + v0;
+}
+
+}  // namespace
+
+// A small-amplitude pulse travels at the longitudinal speed sqrt((K + 4/3 G)/rho) with
+// strength, and at the bulk speed with G = 0 (yield 0 here: the deviator is returned to zero).
+// The front is where the velocity crosses half its jump; the bound, 1 % (the issue's), is 8x
+// the error observed at 400 cells (-0.12 %) and it falls at 800.
+TEST(StrengthCycle, ElasticWaveAtTheLongitudinalAndBulkSpeeds) {
+  const double K = kRho0 * kC0 * kC0;
+  const double c_long = std::sqrt((K + 4.0 / 3.0 * kG) / kRho0), c_bulk = kC0;
+  const std::vector<std::string> plain = {"materials.0.strength.model=elastic_plastic",
+                                          "materials.0.strength.yield=1",
+                                          "materials.0.strength.shear_modulus=0.276"};
+  const std::vector<std::string> no_g = {"materials.0.strength.model=elastic_plastic",
+                                         "materials.0.strength.yield=0",
+                                         "materials.0.strength.shear_modulus=0.276"};
+  double err_prev = 1;
+  for (int n : {400, 800}) {
+    const double c = wave_speed(n, plain), cb = wave_speed(n, no_g);
+    const double e = c / c_long - 1, eb = cb / c_bulk - 1;
+    std::printf(
+        "elastic wave, %d cells: %.6f vs longitudinal %.6f (%+.3f %%); G = 0: %.6f vs bulk "
+        "%.6f (%+.3f %%)\n",
+        n, c, c_long, 100 * e, cb, c_bulk, 100 * eb);
+    EXPECT_LT(std::abs(e), 0.01);
+    EXPECT_LT(std::abs(eb), 0.01);
+    EXPECT_LT(std::abs(e), err_prev);
+    err_prev = std::abs(e);
+  }
+  // Steinberg-Guinan (the deck's model): G(p, T) at the nearly undisturbed state is G0 within
+  // 1e-3, so the same speed to 1 %.
+  const double csg = wave_speed(400, {});
+  std::printf("elastic wave, Steinberg-Guinan: %.6f (%+.3f %%)\n", csg, 100 * (csg / c_long - 1));
+  EXPECT_LT(std::abs(csg / c_long - 1), 0.01);
+}
+
+// The elastic-plastic piston (uniaxial strain, constant yield): the bar moves at -u_p onto a
+// rigid wall, which is the exact solution's piston in the bar's frame. Elastic precursor and
+// plastic shock speeds, the Hugoniot elastic limit and the plastic state against
+// exact::EpPiston (hypoelastic law, this code's rho Gamma = rho0 Gamma0 form), at 400 and 800
+// cells, every error falling.
+TEST(StrengthCycle, ElasticPlasticPistonMatchesTheExactSolution) {
+  exact::EpPistonMaterial mat{kRho0, kC0, kS, kGamma0, kG, kY};
+  const double up = 0.01;  // 100 m/s, 3x the HEL particle speed
+  const exact::EpPiston ex(mat, up);
+  const exact::EpState& y = ex.yield_state();
+  const exact::EpState& pl = ex.plastic_state();
+  std::printf(
+      "EP piston exact: U_e %.6f U_p %.6f (bar frame), HEL %.6e Mbar, yield rho %.6f "
+      "u %.6f; plastic rho %.6f sigma %.6e\n",
+      ex.elastic_speed(), ex.plastic_speed(), ex.hel(), y.rho, y.u, pl.rho, pl.sigma());
+  double prev[4] = {1, 1, 1, 1};
+  for (int n : {400, 800}) {
+    auto r = test::run_scene(test::load_scene(
+        "elastic_wave.yaml",
+        {"mesh.cells=[" + std::to_string(n) + ",2,2]", "materials.0.strength.model=elastic_plastic",
+         "materials.0.strength.yield=0.0029", "materials.0.strength.shear_modulus=0.276",
+         "regions.0.velocity=[-0.01,0,0]", "regions.0.energy=1e-9", "time.end=5"}));
+    ASSERT_TRUE(r.result.ok) << r.result.health.what;
+    const Line l = line_x(r);
+    const double t = l.t;
+    // wall frame: the fronts run at U - u_p; the yield state moves at u_y - u_p
+    const double x_e = front(l, 0.5 * (y.u - up) + 0.5 * (-up));
+    const double x_p = front(l, 0.5 * (0 + (y.u - up)));
+    const double ue = x_e / t + up, upl = x_p / t + up;
+    // plateaus: the middle of each region, 10 % of its width from its ends
+    auto mean = [&](const std::vector<double>& f, double a, double b) {
+      double s = 0;
+      int c = 0;
+      for (std::size_t i = 0; i < l.x.size(); ++i)
+        if (l.x[i] > a && l.x[i] < b) s += f[i], ++c;
+      return s / c;
+    };
+    std::vector<double> sig(l.x.size());
+    for (std::size_t i = 0; i < sig.size(); ++i) sig[i] = l.sxx[i] - l.p[i];
+    const double w_y = x_e - x_p, w_p = x_p;
+    const double hel = -mean(sig, x_p + 0.1 * w_y, x_e - 0.1 * w_y);
+    const double rho2 = mean(l.rho, 0.1 * w_p, 0.9 * w_p);
+    const double sig2 = mean(sig, 0.1 * w_p, 0.9 * w_p);
+    const double err[4] = {ue / ex.elastic_speed() - 1, upl / ex.plastic_speed() - 1,
+                           hel / ex.hel() - 1, sig2 / pl.sigma() - 1};
+    std::printf(
+        "EP piston, %d cells, t = %.2f: U_e %.6f (%+.3f %%), U_p %.6f (%+.3f %%), HEL "
+        "%.6e (%+.3f %%), plastic rho %.6f (%+.4f %%), sigma %.6e (%+.3f %%)\n",
+        n, t, ue, 100 * err[0], upl, 100 * err[1], hel, 100 * err[2], rho2,
+        100 * (rho2 / pl.rho - 1), sig2, 100 * err[3]);
+    // Front speeds within 1 % (half a cell of front position is 0.2 % here), states within
+    // 1 %: the plateaus of a shock-capturing scheme (observed below 0.3 %).
+    for (double e : err) EXPECT_LT(std::abs(e), 0.01);
+    EXPECT_LT(std::abs(rho2 / pl.rho - 1), 0.001);
+    // the front speeds converge (the plateaus sit at their exact values to round-off level)
+    EXPECT_LE(std::abs(err[0]), std::abs(prev[0]));
+    EXPECT_LE(std::abs(err[1]), std::abs(prev[1]));
+    std::copy(err, err + 4, prev);
+  }
+}
+
+// Objectivity: a uniform deviator in a rigid rotation about z (node velocities u = -w y,
+// v = w x, the cell gradient exactly the spin) for a quarter turn through the module's own
+// corrector kernel: the von Mises stress stays to round-off and the tensor turns with the body,
+// diag(S, -S, 0) -> diag(-S, S, 0), with an error that falls as dt^2 (Hughes-Winget). Without
+// the Jaumann term nothing would turn s (D = 0), so s_xx would stay +S: the assertion on s_xx
+// below is what fails.
+TEST(StrengthCycle, RigidRotationTurnsTheStressAndKeepsItsInvariants) {
+  MeshSpec ms;
+  ms.cells = {8, 8, 2};
+  ms.lo = {-1, -1, 0};
+  ms.hi = {1, 1, 0.5};
+  Mesh mesh(ms, MPI_COMM_SELF);
+  strength::FlowStress f;
+  f.kind = strength::kConstantYield;
+  f.constant = {Real(kG), Real(1)};  // yield far above the stress: elastic
+  const double S = 1e-3, omega = 0.1;
+  double prev_err = 1;
+  for (int steps : {16, 32, 64}) {
+    strength::Strength st(mesh, f, Real(kRho0));
+    Kokkos::deep_copy(st.stress()[0], Real(S));
+    Kokkos::deep_copy(st.stress()[1], Real(-S));
+    auto u = mesh.new_field("u", Centering::Node), v = mesh.new_field("v", Centering::Node),
+         w = mesh.new_field("w", Centering::Node);
+    auto rho = mesh.new_field("rho", Centering::Cell), e = mesh.new_field("e", Centering::Cell),
+         ph = mesh.new_field("ph", Centering::Cell);
+    Kokkos::deep_copy(rho, Real(kRho0));
+    Kokkos::deep_copy(e, Real(1e-3));
+    const Geometry g = mesh.geometry();
+    Kokkos::parallel_for(
+        "test::rotation", mesh.nodes(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+          (void)k;
+          const Real x = g.node_coord(0, i), yy = g.node_coord(1, j);
+          u(i, j, k) = Real(-omega) * yy;
+          v(i, j, k) = Real(omega) * x;
+        });
+    const double dt = (M_PI / 2) / omega / steps;
+    for (int s = 0; s < steps; ++s) st.corrector(u, v, w, rho, e, ph, Real(dt));
+    const auto sxx = test::gather(mesh, st.stress()[0], Centering::Cell);
+    const auto syy = test::gather(mesh, st.stress()[1], Centering::Cell);
+    const auto sxy = test::gather(mesh, st.stress()[3], Centering::Cell);
+    double err = 0, vm_err = 0;
+    for (std::size_t c = 0; c < sxx.size(); ++c) {
+      err = std::max({err, std::abs(sxx[c] + S), std::abs(syy[c] - S), std::abs(sxy[c])});
+      const double j2 = sxx[c] * sxx[c] + syy[c] * syy[c] + (sxx[c] + syy[c]) * (sxx[c] + syy[c]) +
+                        2 * sxy[c] * sxy[c];
+      vm_err = std::max(vm_err, std::abs(std::sqrt(1.5 * j2) / (std::sqrt(3.0) * S) - 1));
+    }
+    std::printf(
+        "rigid rotation, %d steps: |s - R s0 R^T| / S = %.3e, von Mises change %.3e, "
+        "s_xx / S = %.6f\n",
+        steps, err / S, vm_err, sxx[0] / S);
+    // the rotation angle per step is 2 atan(w dt / 2): error (w dt)^2 / 12 per radian turned
+    EXPECT_LT(err / S, std::pow(omega * dt, 2));
+    EXPECT_LT(vm_err, test::roundoff(1e-13) * steps);
+    EXPECT_LT(sxx[0] / S, -0.99);
+    EXPECT_LT(err, prev_err);
+    prev_err = err;
+  }
+}
+
+// Total energy with strength: two aluminium blocks collide at 2 x 100 m/s (plastic) in a closed
+// box; the deviator's nodal forces and its work in the cells use the same stress and the same
+// gradient, so, with the KE fix, total energy changes by round-off only.
+TEST(StrengthCycle, CollisionConservesTotalEnergyToRoundOff) {
+  auto r = test::run_scene(test::load_scene(
+      "elastic_wave.yaml",
+      {"mesh.cells=[200,2,2]", "boundaries.x=reflective",
+       "materials.0.strength.model=elastic_plastic", "materials.0.strength.yield=0.0029",
+       "materials.0.strength.shear_modulus=0.276",
+       "regions=[{material: al, shape: all, density: 2.703, energy: 1.0e-9, velocity: [-0.01, 0, "
+       "0]}, {material: al, shape: box, lo: [0, -1, -1], hi: [2, 1, 1], density: 2.703, energy: "
+       "1.0e-9, velocity: [0.01, 0, 0]}]",
+       "time.end=3"}));
+  ASSERT_TRUE(r.result.ok) << r.result.health.what;
+  const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
+  const double bound = test::energy_roundoff(r.result.cycles);
+  const auto eps =
+      test::gather(r.sim->mesh(), r.sim->hydro().strength()->plastic_strain(), Centering::Cell);
+  const double eps_max = *std::max_element(eps.begin(), eps.end());
+  std::printf(
+      "collision: %ld cycles, total energy change %.3e (round-off bound %.3e), largest "
+      "plastic strain %.3e\n",
+      r.result.cycles, de, bound, eps_max);
+  EXPECT_LT(std::abs(de), bound);
+  EXPECT_GT(eps_max, 1e-3);  // the collision is plastic
+}
+
+// The strength block is read strictly: each bad input names its key.
+TEST(StrengthCycle, DeckErrorsNameTheKey) {
+  const std::string base = "elastic_wave.yaml";
+  auto error = [&](const std::vector<std::string>& o) -> std::string {
+    try {
+      test::load_scene(base, o);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const struct {
+    std::vector<std::string> set;
+    const char* expect;
+  } cases[] = {
+      {{"materials.0.strength.model=plastic"}, "materials.0.strength.model"},
+      {{"materials.0.strength.model=elastic_plastic"}, "yield"},
+      {{"materials.0.strength.yield=0.1"}, "'yield' belongs to model elastic_plastic"},
+      {{"materials.0.strength.library=unobtainium"}, "no strength data for 'unobtainium'"},
+      {{"materials.0.strength.shear_modulus=-1"}, "materials.0.strength.shear_modulus"},
+      {{"materials.0.strength.colour=red"}, "colour"},
+      {{"materials=[{name: al, library: aluminium_6061, strength: {model: steinberg_guinan}}, "
+        "{name: air, library: air}]"},
+       "not supported yet"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = error(c.set);
+    std::printf("%s -> %s\n", c.set[0].c_str(), msg.c_str());
+    EXPECT_NE(msg.find(c.expect), std::string::npos) << c.set[0] << ": " << msg;
+  }
+}
