@@ -273,6 +273,8 @@ std::vector<OutputField> Hydro::output_fields() const {
       {"velocity_y", Centering::Node, s_.v}, {"velocity_z", Centering::Node, s_.w}};
   if (strength_)
     for (const OutputField& o : strength_->output_fields()) f.push_back(o);
+  if (burn_)
+    for (const OutputField& o : burn_->output_fields()) f.push_back(o);
   return f;
 }
 

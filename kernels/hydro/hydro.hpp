@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "burn/module.hpp"
 #include "eos/eos.hpp"
 #include "io/hdf5_writer.hpp"
 #include "materials/layout.hpp"
@@ -79,6 +80,8 @@ struct Options {
   // flow-stress model and the reference density; kind kNoStrength leaves the module out.
   strength::FlowStress strength;
   Real strength_rho0 = 1;
+  // Burn of a single-material scene's explosive (kernels/burn/module.hpp); off unless burn.on.
+  burn::BurnSetup burn;
 };
 
 struct State {
@@ -137,6 +140,9 @@ class Hydro {
   // The strength module, or nullptr when no material has strength.
   strength::Strength* strength() { return strength_.get(); }
   const strength::Strength* strength() const { return strength_.get(); }
+  // The burn module, or nullptr when no material is an explosive.
+  burn::Burn* burn() { return burn_.get(); }
+  const burn::Burn* burn() const { return burn_.get(); }
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
@@ -181,6 +187,7 @@ class Hydro {
   mat::MaterialSet mats_;
   std::unique_ptr<mat::MaterialState> mm_;
   std::unique_ptr<strength::Strength> strength_;
+  std::unique_ptr<burn::Burn> burn_;
   State s_;
 };
 

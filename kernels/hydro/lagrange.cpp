@@ -58,6 +58,10 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     if (mm_) throw RunError("strength in a multi-material scene is not supported yet (issue #12)");
     strength_ = std::make_unique<strength::Strength>(mesh, opt.strength, opt.strength_rho0);
   }
+  if (opt.burn.on) {
+    if (mm_) throw RunError("burn in a multi-material scene is not supported yet (issue #13)");
+    burn_ = std::make_unique<burn::Burn>(mesh, opt.burn);
+  }
 }
 
 void Hydro::exchange_cells() {
@@ -67,6 +71,8 @@ void Hydro::exchange_cells() {
                            {s_.e, Centering::Cell, {1, 1, 1}}};
   if (strength_)
     for (const HaloField& h : strength_->halo_fields()) f.push_back(h);
+  if (burn_)
+    for (const HaloField& h : burn_->halo_fields()) f.push_back(h);
   halo_.exchange(f);
 }
 
@@ -93,6 +99,10 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
         c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
       });
   if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
+  if (burn_) {
+    burn_->scale_pressure(p);
+    burn_->raise_sound_speed(c);
+  }
 }
 
 void Hydro::viscosity() {
@@ -172,6 +182,7 @@ Health Hydro::lagrange(Real dt) {
           const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
           ph(i, j, k) = eos.pressure_cut(mass / v_half, e_half);
         });
+  if (burn_) burn_->scale_pressure(ph);
   // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
   const bool has_strength = strength_ != nullptr;
   std::array<Field3, 3> fs;
@@ -235,6 +246,8 @@ Health Hydro::lagrange(Real dt) {
           e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
           rho(i, j, k) = mass / (vol + dv);
         });
+  // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
+  if (burn_) burn_->update(rho, double(dt));
 
   // The Lagrangian volumes must stay positive.
   const Real vmin = vol;

@@ -1,6 +1,7 @@
 // The strength module's kernels (module.hpp says what each seam does and why).
 #include "strength/module.hpp"
 
+#include "hydro/per_mass.hpp"
 #include "hydro/point.hpp"
 #include "strength/stress_update.hpp"
 
@@ -166,45 +167,9 @@ void Strength::corrector(const Field3& ub, const Field3& vb, const Field3& wb, c
 }
 
 void Strength::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
-                     const Field3& rho, const Field3& pre, const Field3& post, int order) {
-  (void)post;
-  const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
-  auto mfx = mass_flux[0], mfy = mass_flux[1], mfz = mass_flux[2];
-  auto old = scratch_;
-  std::array<Field3, 7> carried = {s_[0], s_[1], s_[2], s_[3], s_[4], s_[5], eps_p_};
-  for (const Field3& phi : carried) {
-    Kokkos::deep_copy(old, phi);
-    Kokkos::parallel_for(
-        "strength::remap", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          // flux of phi through face (fi, fj, fk) normal to d, mass flux m, from its donor
-          auto flux = [&](const Field3& mf, int fi, int fj, int fk, int d) {
-            const Real m = mf(fi, fj, fk);
-            const int sx = d == 0, sy = d == 1, sz = d == 2;
-            const int dn = m > 0 ? -1 : 0, st = m > 0 ? 1 : -1;
-            const int di = fi + dn * sx, dj = fj + dn * sy, dk = fk + dn * sz;
-            const Real sm = mabs(m) / (rho(di, dj, dk) * pre(di, dj, dk));
-            return m * hydro::face_value(old(di - st * sx, dj - st * sy, dk - st * sz),
-                                         old(di, dj, dk),
-                                         old(di + st * sx, dj + st * sy, dk + st * sz), sm, order);
-          };
-          const Real m0 = rho(i, j, k) * pre(i, j, k);
-          // the same sums, in the same order, as the hydro's cell update
-          Real dm = 0, dq = 0;
-          if (ax > 0) {
-            dm += mfx(i, j, k) - mfx(i + 1, j, k);
-            dq += flux(mfx, i, j, k, 0) - flux(mfx, i + 1, j, k, 0);
-          }
-          if (ay > 0) {
-            dm += mfy(i, j, k) - mfy(i, j + 1, k);
-            dq += flux(mfy, i, j, k, 1) - flux(mfy, i, j + 1, k, 1);
-          }
-          if (az > 0) {
-            dm += mfz(i, j, k) - mfz(i, j, k + 1);
-            dq += flux(mfz, i, j, k, 2) - flux(mfz, i, j, k + 1, 2);
-          }
-          phi(i, j, k) = (old(i, j, k) * m0 + dq) / (m0 + dm);
-        });
-  }
+                     const Field3& rho, const Field3& pre, int order) {
+  hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre,
+                        {s_[0], s_[1], s_[2], s_[3], s_[4], s_[5], eps_p_}, scratch_, order);
 }
 
 std::vector<HaloField> Strength::halo_fields() const {

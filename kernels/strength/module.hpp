@@ -55,7 +55,7 @@ class Strength {
   // One remap step over the faces normal to `axes`: every carried quantity per unit mass, with
   // the cell mass fluxes of the step (owned cells; call before the cell densities change).
   void remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
-             const Field3& rho, const Field3& pre, const Field3& post, int order);
+             const Field3& rho, const Field3& pre, int order);
   // The halo fields of the carried quantities (exchanged with the cell fields).
   std::vector<HaloField> halo_fields() const;
   std::vector<OutputField> output_fields() const;

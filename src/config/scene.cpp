@@ -107,11 +107,69 @@ void read_strength(const DeckNode& n, MaterialSpec& spec) {
     n.fail("steinberg_guinan needs the material's reference density 'rho0'");
 }
 
+// materials[].burn: {detonation_speed: D, cj_pressure: p_cj (JWL materials default to their
+// D and p_cj), detonators: [{type: point, at: [x, y, z]} | {type: line, from: [..], to: [..]} |
+// {type: plane, at: [..], normal: [..]}, each with an optional firing time], ramp_cells: 2,
+// programmed: true, volume_burn: false}.
+void read_burn(const DeckNode& n, MaterialSpec& spec) {
+  n.expect_keys(
+      {"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed", "volume_burn"});
+  BurnSpec& b = spec.burn;
+  b.on = true;
+  const bool jwl = spec.eos == "jwl";
+  const double d0 = jwl && spec.params.count("D") ? spec.params.at("D") : 0;
+  const double p0 = jwl && spec.params.count("p_cj") ? spec.params.at("p_cj") : 0;
+  if (d0 > 0)
+    b.detonation_speed = n.get_real("detonation_speed", 1e-6, 1e3, d0);
+  else
+    b.detonation_speed = n.get_real("detonation_speed", 1e-6, 1e3);
+  if (p0 > 0)
+    b.cj_pressure = n.get_real("cj_pressure", 1e-12, 1e3, p0);
+  else
+    b.cj_pressure = n.get_real("cj_pressure", 1e-12, 1e3);
+  b.ramp_cells = n.get_real("ramp_cells", 0.5, 100, 2);
+  b.programmed = n.get_bool("programmed", true);
+  b.volume_burn = n.get_bool("volume_burn", false);
+  if (!b.programmed && !b.volume_burn) n.fail("burn needs programmed and/or volume_burn true");
+  if (!(spec.rho0 > 0)) n.fail("burn needs the explosive's reference density 'rho0'");
+  // the CJ state must be a compression: 1 - p_cj / (rho0 D^2) in (0, 1)
+  if (!(b.cj_pressure < spec.rho0 * b.detonation_speed * b.detonation_speed))
+    n.fail("cj_pressure must be below rho0 D^2 (the CJ state is a compression)");
+  if (b.programmed) {
+    const DeckNode list = n.child("detonators");
+    if (!list.is_sequence() || list.size() == 0)
+      list.fail("expected a non-empty list of detonators");
+    for (const DeckNode& d : list.items()) {
+      DetonatorSpec ds;
+      ds.type = d.get_enum("type", {"point", "line", "plane"});
+      if (ds.type == "point") {
+        d.expect_keys({"type", "at", "time"});
+        ds.a = d.get_real3("at", -kHuge, kHuge);
+      } else if (ds.type == "line") {
+        d.expect_keys({"type", "from", "to", "time"});
+        ds.a = d.get_real3("from", -kHuge, kHuge);
+        ds.b = d.get_real3("to", -kHuge, kHuge);
+      } else {
+        d.expect_keys({"type", "at", "normal", "time"});
+        ds.a = d.get_real3("at", -kHuge, kHuge);
+        ds.b = d.get_real3("normal", -kHuge, kHuge);
+        if (!(ds.b[0] * ds.b[0] + ds.b[1] * ds.b[1] + ds.b[2] * ds.b[2] > 0))
+          d.child("normal").fail("a plane detonator needs a non-zero normal");
+      }
+      ds.time = d.get_real("time", 0, kHuge, 0);
+      b.detonators.push_back(ds);
+    }
+  } else if (n.has("detonators")) {
+    n.child("detonators").fail("detonators need programmed: true");
+  }
+}
+
 void read_materials(const DeckNode& root, Scene& s) {
   const DeckNode list = root.child("materials");
   if (!list.is_sequence() || list.size() == 0) list.fail("expected a non-empty list of materials");
   for (const DeckNode& m : list.items()) {
-    m.expect_keys({"name", "library", "eos", "rho0", "params", "gamma", "p_min", "strength"});
+    m.expect_keys(
+        {"name", "library", "eos", "rho0", "params", "gamma", "p_min", "strength", "burn"});
     MaterialSpec spec;
     spec.name = m.get_string("name");
     for (const auto& other : s.materials)
@@ -160,8 +218,15 @@ void read_materials(const DeckNode& root, Scene& s) {
       spec.p_min = m.get_real("p_min", -1e3, 0.0);
     }
     if (m.has("strength")) read_strength(m.child("strength"), spec);
+    if (m.has("burn")) read_burn(m.child("burn"), spec);
     s.materials.push_back(spec);
   }
+  if (s.materials.size() > 1)
+    for (std::size_t q = 0; q < s.materials.size(); ++q)
+      if (s.materials[q].burn.on)
+        list[q].child("burn").fail(
+            "burn in a multi-material scene is not supported yet (single-material scenes only; "
+            "issue #13)");
   if (s.materials.size() > 1)
     for (std::size_t q = 0; q < s.materials.size(); ++q)
       if (!s.materials[q].strength.model.empty())

@@ -19,6 +19,20 @@ struct StrengthSpec {
   double yield = 0;          // Mbar, elastic_plastic's constant flow stress
 };
 
+// An explosive's burn (materials[].burn; kernels/burn/). on == false means none.
+struct DetonatorSpec {
+  std::string type = "point";  // point (at) | line (from, to) | plane (at, normal)
+  std::array<double, 3> a{}, b{};
+  double time = 0;  // firing time
+};
+struct BurnSpec {
+  bool on = false;
+  double detonation_speed = 0, cj_pressure = 0;  // cm/us, Mbar (JWL: default D, p_cj)
+  double ramp_cells = 2;
+  bool programmed = true, volume_burn = false;
+  std::vector<DetonatorSpec> detonators;
+};
+
 struct MaterialSpec {
   std::string name;
   std::string library;  // library entry it starts from ("" for a custom material)
@@ -29,6 +43,7 @@ struct MaterialSpec {
   bool has_p_min = false;  // tension cutoff given (materials[].p_min, Mbar, <= 0)
   double p_min = 0;
   StrengthSpec strength;
+  BurnSpec burn;
 };
 
 struct ShapeSpec {

@@ -170,6 +170,31 @@ strength::FlowStress material_strength(const MaterialSpec& m) {
   return f;
 }
 
+// The burn module's set-up of a material's burn block (burn.on false when it has none).
+burn::BurnSetup material_burn(const MaterialSpec& m) {
+  burn::BurnSetup b;
+  const BurnSpec& bs = m.burn;
+  if (!bs.on) return b;
+  b.on = true;
+  b.d_cj = Real(bs.detonation_speed);
+  b.p_cj = Real(bs.cj_pressure);
+  b.rho0 = Real(m.rho0);
+  b.ramp_cells = Real(bs.ramp_cells);
+  b.programmed = bs.programmed;
+  b.volume_burn = bs.volume_burn;
+  for (const DetonatorSpec& d : bs.detonators) {
+    burn::Detonator det;
+    det.kind = d.type == "point"  ? burn::Detonator::Kind::Point
+               : d.type == "line" ? burn::Detonator::Kind::Line
+                                  : burn::Detonator::Kind::Plane;
+    det.a = d.a;
+    det.b = d.b;
+    det.t0 = d.time;
+    b.detonators.push_back(det);
+  }
+  return b;
+}
+
 double energy_for_pressure(const eos::Eos& eos, double rho, double p) {
   const double p0 = double(eos.pressure(Real(rho), Real(0)));
   const double slope = double(eos.pressure(Real(rho), Real(1))) - p0;
@@ -204,6 +229,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   if (scene_.materials.size() == 1) {
     opt.strength = material_strength(scene_.materials[0]);
     opt.strength_rho0 = Real(scene_.materials[0].rho0 > 0 ? scene_.materials[0].rho0 : 1.0);
+    opt.burn = material_burn(scene_.materials[0]);
   }
   std::vector<eos::Eos> eos;
   for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
@@ -241,6 +267,17 @@ std::vector<std::string> Simulation::modules() const {
       if (f.kind == strength::kConstantYield)
         os << ", G=" << f.constant.G0 << " Mbar, Y=" << f.constant.Y0 << " Mbar";
       os << "; Jaumann rate, radial return; fields stress_xx..zx, plastic_strain)";
+      m.push_back(os.str());
+    }
+    if (mat.burn.on) {
+      std::ostringstream os;
+      os << "burn: " << (mat.burn.programmed ? "programmed" : "")
+         << (mat.burn.programmed && mat.burn.volume_burn ? " + " : "")
+         << (mat.burn.volume_burn ? "CJ volume" : "") << " (" << mat.name
+         << ", D=" << mat.burn.detonation_speed << " cm/us, p_cj=" << mat.burn.cj_pressure
+         << " Mbar, " << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
+         << " cells; p = F P_products; Huygens lighting times; fields burn_fraction, "
+            "lighting_time)";
       m.push_back(os.str());
     }
   }
