@@ -282,6 +282,26 @@ Deck Deck::load(const std::string& file, const std::vector<std::string>& overrid
   return parse(ss.str(), file, overrides);
 }
 
+namespace {
+void flatten(const YAML::Node& n, const std::string& path,
+             std::map<std::string, std::string>& out) {
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it)
+      flatten(it->second, path.empty() ? it->first.Scalar() : path + "." + it->first.Scalar(), out);
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) flatten(n[i], path + "." + std::to_string(i), out);
+  } else if (n.IsScalar()) {
+    out[path] = n.Scalar();
+  }
+}
+}  // namespace
+
+std::map<std::string, std::string> Deck::values() const {
+  std::map<std::string, std::string> out;
+  flatten(root_, "", out);
+  return out;
+}
+
 DeckNode Deck::root() const {
   return DeckNode(root_, "", file_, overrides_);
 }

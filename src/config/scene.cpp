@@ -350,12 +350,21 @@ Scene read_scene(const Deck& deck) {
   s.output.basename = s.name;
   if (root.has("output")) {
     const DeckNode o = root.child("output");
-    o.expect_keys({"dir", "interval", "write", "log_every"});
+    o.expect_keys({"dir", "interval", "write", "log_every", "checkpoint_every", "checkpoint_keep"});
     s.output.dir = o.get_string("dir", s.output.dir);
     s.output.interval = o.get_real("interval", 0, kHuge, 0);
     s.output.write = o.get_bool("write", true);
     s.output.log_every = o.get_int("log_every", 1, 1000000000L, s.output.log_every);
+    if (o.has("checkpoint_every")) {
+      const DeckNode c = o.child("checkpoint_every");
+      c.expect_keys({"cycles", "seconds"});
+      s.output.checkpoint_cycles = c.get_int("cycles", 0, 1000000000L, 0);
+      s.output.checkpoint_seconds = c.get_real("seconds", 0, 1e9, 0);
+    }
+    s.output.checkpoint_keep =
+        static_cast<int>(o.get_int("checkpoint_keep", 1, 1000, s.output.checkpoint_keep));
   }
+  s.deck_values = deck.values();
   return s;
 }
 

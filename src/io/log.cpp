@@ -14,9 +14,11 @@ void log_line(const std::string& text) {
 }
 
 void log_cycle(long cycle, double t, double dt, const std::string& limit,
-               const std::array<int, 3>& cell, double wall, double progress) {
-  std::printf("cycle %7ld  t %.6e  dt %.4e (%s at %d,%d,%d)  wall %9.3f s  %5.1f%%\n", cycle, t, dt,
-              limit.c_str(), cell[0], cell[1], cell[2], wall, 100.0 * progress);
+               const std::array<int, 3>& cell, double wall, double progress, double eta) {
+  char left[32] = "";
+  if (eta >= 0) std::snprintf(left, sizeof left, "  ETA %.0f s", eta);
+  std::printf("cycle %7ld  t %.6e  dt %.4e (%s at %d,%d,%d)  wall %9.3f s  %5.1f%%%s\n", cycle, t,
+              dt, limit.c_str(), cell[0], cell[1], cell[2], wall, 100.0 * progress, left);
   std::fflush(stdout);
 }
 
