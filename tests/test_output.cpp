@@ -1,0 +1,276 @@
+// What a CLI run writes, read back and checked: the final dump equals the in-memory fields of
+// the same run bit for bit (every dataset), summary.json's totals equal the run's (JSON keeps
+// 17 significant digits, so the doubles round-trip exactly), the XDMF geometry is the mesh's;
+// endings are named (end time, max_cycles, interrupted, non-physical); SIGTERM stops after the
+// cycle with exit 5 and a checkpoint from which the run finishes bitwise equal; stale temporary
+// files are removed and said so; an output directory holding another run is refused without
+// --overwrite.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "cli_support.hpp"
+#include "io/hdf5_writer.hpp"
+#include "support.hpp"
+
+namespace {
+
+using namespace mp;
+using namespace mp::cli;
+
+// Two-material Sod, 60 cells, to t = 0.05 (about 60 cycles).
+const std::vector<std::string> kSod2 = {"--set", "mesh.cells=[60,2,2]", "--set", "time.end=0.05"};
+
+std::vector<std::string> args(const std::string& deck, std::vector<std::string> extra,
+                              const std::string& out) {
+  std::vector<std::string> a = {config(deck)};
+  a.insert(a.end(), extra.begin(), extra.end());
+  a.insert(a.end(), {"--output", out, "-q"});
+  return a;
+}
+
+// The run's dataset names, in the file's order (H5Literate by name).
+std::vector<std::string> dataset_names(const std::string& file) {
+  std::vector<std::string> names;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return names;
+  H5Literate(
+      f, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->push_back(name);
+        return 0;
+      },
+      &names);
+  H5Fclose(f);
+  return names;
+}
+
+long count_different(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return -1;
+  long n = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) n += a[i] == b[i] ? 0 : 1;
+  return n;
+}
+
+class Output : public CliTest {};
+
+TEST_F(Output, FinalDumpSummaryAndXdmfMatchTheRun) {
+  const Result r = run(args("sod2.yaml", kSod2, "out"));
+  ASSERT_EQ(r.status, 0) << r.err;
+  // The same run in this process (one rank, one thread, as the child ran).
+  auto ran =
+      test::run_scene(test::load_scene("sod2.yaml", {"mesh.cells=[60,2,2]", "time.end=0.05"}));
+  ASSERT_TRUE(ran.result.ok);
+  const auto summary = nlohmann::json::parse(read(dir_ / "out" / "summary.json"));
+  const long cycles = summary["cycles"].get<long>();
+  std::printf("  summary: %ld cycles, t = %.17g; in-process run: %ld cycles, t = %.17g\n", cycles,
+              summary["time"].get<double>(), ran.result.cycles, ran.result.time);
+  EXPECT_EQ(cycles, ran.result.cycles);
+  EXPECT_EQ(summary["time"].get<double>(), ran.result.time);
+  EXPECT_EQ(summary["status"], "completed");
+  EXPECT_EQ(summary["non_finite"].size(), 0u);
+
+  // summary totals == the run's totals, exactly
+  for (const auto& [key, t] : {std::pair<const char*, hydro::Totals>{"start", ran.result.start},
+                               {"end", ran.result.end}}) {
+    const auto& s = summary[key];
+    std::printf("  %s: mass %.17g (run %.17g), total energy %.17g (run %.17g)\n", key,
+                s["mass"].get<double>(), t.mass, s["total_energy"].get<double>(), t.total());
+    EXPECT_EQ(s["mass"].get<double>(), t.mass) << key;
+    EXPECT_EQ(s["internal_energy"].get<double>(), t.internal) << key;
+    EXPECT_EQ(s["kinetic_energy"].get<double>(), t.kinetic) << key;
+    EXPECT_EQ(s["total_energy"].get<double>(), t.total()) << key;
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(s["momentum"][d].get<double>(), t.momentum[d]) << key;
+    EXPECT_EQ(s["material_mass"]["driver"].get<double>(), t.material_mass[0]) << key;
+    EXPECT_EQ(s["material_mass"]["test_gas"].get<double>(), t.material_mass[1]) << key;
+  }
+
+  // final dump == in-memory fields, every dataset, bit for bit
+  char name[64];
+  std::snprintf(name, sizeof name, "sod2_%06ld.h5", cycles);
+  const std::string dump = (dir_ / "out" / name).string();
+  auto fields = ran.sim->hydro().output_fields();
+  const auto* mm = ran.sim->hydro().materials();
+  ASSERT_NE(mm, nullptr);
+  const auto& scene = ran.sim->scene();
+  for (int m = 0; m < mm->nmat(); ++m)
+    fields.push_back({"fraction_" + scene.materials[m].name, Centering::Cell, mm->fraction(m)});
+  auto in_file = dataset_names(dump);
+  std::vector<std::string> expected;
+  for (const auto& f : fields) expected.push_back(f.name);
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(in_file, expected) << "the dump holds exactly the run's fields";
+  for (const auto& f : fields) {
+    const auto mine = test::gather(ran.sim->mesh(), f.view, f.centering);
+    const auto theirs = read_dataset(dump, f.name);
+    const long diff = count_different(mine, theirs);
+    std::printf("  %-16s %5zu values, %ld differ\n", f.name.c_str(), theirs.size(), diff);
+    EXPECT_EQ(diff, 0) << f.name;
+  }
+
+  // XDMF: one grid per dump, each with the mesh's node dimensions, origin and spacing (z y x)
+  const std::string xmf = read(dir_ / "out" / "sod2.xmf");
+  const auto& spec = ran.sim->mesh().spec();
+  std::smatch m;
+  std::string rest = xmf;
+  int grids = 0;
+  const std::regex topo(R"re(TopologyType="3DCoRectMesh" Dimensions="(\d+) (\d+) (\d+)")re");
+  const std::regex origin(R"re(Name="Origin"[^>]*>([^<]*)<)re");
+  const std::regex spacing(R"re(Name="Spacing"[^>]*>([^<]*)<)re");
+  for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), topo); it != std::sregex_iterator();
+       ++it) {
+    ++grids;
+    for (int d = 0; d < 3; ++d)
+      EXPECT_EQ(std::stoi((*it)[3 - d]), spec.cells[d] + 1) << "axis " << d;
+  }
+  for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), origin); it != std::sregex_iterator();
+       ++it) {
+    std::istringstream is((*it)[1]);
+    double z, y, x;
+    is >> z >> y >> x;
+    EXPECT_EQ(x, spec.lo[0]);
+    EXPECT_EQ(y, spec.lo[1]);
+    EXPECT_EQ(z, spec.lo[2]);
+  }
+  for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), spacing);
+       it != std::sregex_iterator(); ++it) {
+    std::istringstream is((*it)[1]);
+    double h[3];
+    is >> h[2] >> h[1] >> h[0];
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(h[d], (spec.hi[d] - spec.lo[d]) / spec.cells[d]);
+  }
+  std::printf("  xdmf: %d grids, %zu dumps listed in the summary\n", grids,
+              summary["files"].size());
+  EXPECT_EQ(grids, static_cast<int>(summary["files"].size()));
+  EXPECT_EQ(grids, 2);  // first and last (output.interval 0)
+}
+
+TEST_F(Output, MaxCyclesIsNamedAndNotCompleted) {
+  auto a = args("sod2.yaml", kSod2, "out");
+  a.insert(a.end(), {"--set", "time.max_cycles=5"});
+  a.erase(std::find(a.begin(), a.end(), "-q"));
+  const Result r = run(a);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(holds(r.out, "stopped (max_cycles reached): 5 cycles")) << r.out;
+  const auto s = nlohmann::json::parse(read(dir_ / "out" / "summary.json"));
+  EXPECT_EQ(s["status"], "max_cycles");
+  EXPECT_EQ(s["ended_by"], "max_cycles reached");
+  EXPECT_LT(s["time"].get<double>(), s["end_time"].get<double>());
+}
+
+TEST_F(Output, StaleTemporariesAreRemovedAndReported) {
+  fs::create_directories(dir_ / "out");
+  write("out/sod2_000007.h5.tmp", "partial");
+  write("out/summary.json.tmp", "{\"partial");
+  auto a = args("sod2.yaml", kSod2, "out");
+  a.pop_back();  // not quiet: the removal is logged
+  const Result r = run(a);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(holds(r.out, "removed stale temporary file out/sod2_000007.h5.tmp")) << r.out;
+  EXPECT_TRUE(holds(r.out, "removed stale temporary file out/summary.json.tmp")) << r.out;
+  for (const auto& f : files("out")) EXPECT_EQ(f.find(".tmp"), std::string::npos) << f;
+}
+
+TEST_F(Output, AnotherRunsDirectoryNeedsOverwrite) {
+  ASSERT_EQ(run(args("sod2.yaml", kSod2, "out")).status, 0);
+  const std::string before = read(dir_ / "out" / "summary.json");
+  const auto listing = files("out");
+  Result r = run(args("sod_x.yaml", {"--set", "mesh.cells=[20,2,2]"}, "out"));
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_TRUE(holds(r.err, "holds another run's files")) << r.err;
+  EXPECT_TRUE(holds(r.err, "--overwrite")) << r.err;
+  EXPECT_EQ(read(dir_ / "out" / "summary.json"), before) << "the earlier run was touched";
+  EXPECT_EQ(files("out"), listing);
+  auto a = args("sod_x.yaml", {"--set", "mesh.cells=[20,2,2]", "--set", "time.end=0.01"}, "out");
+  a.push_back("--overwrite");
+  r = run(a);
+  EXPECT_EQ(r.status, 0) << r.err;
+  for (const auto& f : files("out")) EXPECT_EQ(f.find("sod2"), std::string::npos) << f;
+}
+
+TEST_F(Output, CheckIsADryRunWithAMemoryEstimate) {
+  auto a = args("sod2.yaml", kSod2, "out");
+  a.pop_back();
+  a.push_back("--check");
+  const Result r = run(a);
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(holds(r.out, "memory estimate:")) << r.out;
+  EXPECT_TRUE(holds(r.out, "nothing allocated")) << r.out;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// The triple point at 70 x 30 x 2 (its deck's mesh) to t = 1.2: long enough (a few hundred
+// cycles) to be stopped part way.
+const std::vector<std::string> kTriple = {"--set", "time.end=1.2", "--set", "output.log_every=1"};
+
+TEST_F(Output, SigtermStopsAfterTheCycleAndTheRestartFinishesBitwiseEqual) {
+  ASSERT_EQ(run(args("triple_point.yaml", kTriple, "straight")).status, 0);
+  std::vector<std::string> argv = {exe()};
+  auto a = args("triple_point.yaml", kTriple, "sig");
+  a.pop_back();  // the cycle lines tell when to signal
+  argv.insert(argv.end(), a.begin(), a.end());
+  Child c(dir_, argv);
+  ASSERT_TRUE(c.wait_for_output("cycle      20", 60)) << c.out();
+  c.signal(SIGTERM);
+  Result r = c.finish(60);
+  std::printf("  SIGTERM: exit %d\n", r.status);
+  ASSERT_EQ(r.status, 5) << r.out << r.err;
+  EXPECT_TRUE(holds(r.out, "stopped (interrupted by a signal)")) << r.out;
+  auto s = nlohmann::json::parse(read(dir_ / "sig" / "summary.json"));
+  EXPECT_EQ(s["status"], "interrupted");
+  const long stopped = s["cycles"].get<long>();
+  ASSERT_EQ(s["checkpoints"].size(), 1u) << s;
+  char ckpt[64], dump[64];
+  std::snprintf(ckpt, sizeof ckpt, "triple_point_checkpoint_%06ld.h5", stopped);
+  std::snprintf(dump, sizeof dump, "triple_point_%06ld.h5", stopped);
+  EXPECT_TRUE(fs::exists(dir_ / "sig" / ckpt)) << ckpt;
+  EXPECT_TRUE(fs::exists(dir_ / "sig" / dump)) << dump;
+  std::printf("  stopped at cycle %ld: %s and %s written\n", stopped, ckpt, dump);
+
+  auto again = args("triple_point.yaml", kTriple, "sig");
+  again.insert(again.end(), {"--restart", "latest"});
+  r = run(again);
+  ASSERT_EQ(r.status, 0) << r.err;
+  s = nlohmann::json::parse(read(dir_ / "sig" / "summary.json"));
+  const auto straight = nlohmann::json::parse(read(dir_ / "straight" / "summary.json"));
+  EXPECT_EQ(s["status"], "completed");
+  EXPECT_EQ(s["restart_cycle"].get<long>(), stopped);
+  EXPECT_EQ(s["cycles"], straight["cycles"]);
+  EXPECT_EQ(s["end"], straight["end"]) << "totals differ";
+  std::snprintf(dump, sizeof dump, "triple_point_%06ld.h5", s["cycles"].get<long>());
+  const std::string a_file = (dir_ / "straight" / dump).string(),
+                    b_file = (dir_ / "sig" / dump).string();
+  const auto names = dataset_names(a_file);
+  EXPECT_EQ(names, dataset_names(b_file));
+  long total = 0;
+  for (const auto& n : names) {
+    const long diff = count_different(read_dataset(a_file, n), read_dataset(b_file, n));
+    total += diff;
+    EXPECT_EQ(diff, 0) << n;
+  }
+  std::printf(
+      "  restart finished at cycle %ld: %zu datasets, %ld values differ from the straight "
+      "run\n",
+      s["cycles"].get<long>(), names.size(), total);
+  // the series lists the dumps of both processes
+  EXPECT_TRUE(holds(read(dir_ / "sig" / "triple_point.xmf"), "triple_point_000000.h5"));
+}
+
+TEST_F(Output, SecondSignalStopsAtOnce) {
+  std::vector<std::string> argv = {exe()};
+  auto a = args("triple_point.yaml", kTriple, "sig");
+  a.pop_back();
+  argv.insert(argv.end(), a.begin(), a.end());
+  Child c(dir_, argv);
+  ASSERT_TRUE(c.wait_for_output("cycle      10", 60)) << c.out();
+  c.signal(SIGTERM);
+  c.signal(SIGINT);  // another signal: not merged with the first while it is pending
+  const Result r = c.finish(60);
+  std::printf("  SIGTERM + SIGINT: exit %d\n", r.status);
+  EXPECT_TRUE(r.status == 128 + SIGTERM || r.status == 128 + SIGINT) << r.status << r.err;
+  EXPECT_TRUE(holds(r.err, "second signal: stopping at once")) << r.err;
+}
+
+}  // namespace
