@@ -709,49 +709,53 @@ RunResult Simulation::run() {
 
   hydro::Health h;
   bool interrupted = false;
-  while (t_ < t_end * (1 - 1e-12) && cycle_ < scene_.time.max_cycles) {
-    hydro::TimeStep ts = hydro_->time_step(dt_old_, t_, t_end);
-    if (cycle_ == 0 && ts.dt > Real(scene_.time.dt_initial)) {
-      ts.dt = Real(scene_.time.dt_initial);
-      ts.limit = "initial";
+  try {
+    while (t_ < t_end * (1 - 1e-12) && cycle_ < scene_.time.max_cycles) {
+      hydro::TimeStep ts = hydro_->time_step(dt_old_, t_, t_end);
+      if (cycle_ == 0 && ts.dt > Real(scene_.time.dt_initial)) {
+        ts.dt = Real(scene_.time.dt_initial);
+        ts.limit = "initial";
+      }
+      h = hydro_->step(ts.dt, cycle_);
+      // the last step lands on the end time exactly (Real(t_end - t) is rounded in float builds)
+      t_ = ts.limit == "end" ? t_end : t_ + double(ts.dt);
+      ++cycle_;
+      dt_old_ = ts.dt;
+      if (!h.ok) break;
+      const bool at_end = t_ >= t_end * (1 - 1e-12);
+      if (!settings_.quiet && root && (cycle_ % scene_.output.log_every == 0 || at_end)) {
+        const double w = wall(), done = (t_ - t_begin) / (t_end - t_begin);
+        log_cycle(cycle_, t_, double(ts.dt), ts.limit, ts.cell, w, t_ / t_end,
+                  done > 0 ? w * (1 - done) / done : -1);
+      }
+      if (write && writer_ && scene_.output.interval > 0 && t_ >= next_dump_ * (1 - 1e-12) &&
+          !at_end) {
+        files_.push_back(write_dump(t_, cycle_));
+        next_dump_ += scene_.output.interval;
+      }
+      // Every rank learns whether any rank saw a stop signal or reached the checkpoint wall
+      // time, so all stop or checkpoint after the same cycle.
+      int flags = 0;
+      if (settings_.watch_signals && signals::requested()) flags |= 1;
+      if (checkpoints && scene_.output.checkpoint_seconds > 0 &&
+          wall() - last_checkpoint >= scene_.output.checkpoint_seconds)
+        flags |= 2;
+      MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &flags, 1, MPI_INT, MPI_BOR, mesh_->comm()));
+      if (flags & 1) {
+        interrupted = !at_end;
+        break;
+      }
+      if (checkpoints && !at_end &&
+          ((scene_.output.checkpoint_cycles > 0 && cycle_ % scene_.output.checkpoint_cycles == 0) ||
+           (flags & 2))) {
+        r.checkpoints.push_back(write_checkpoint_now());
+        checkpoint_cycle = cycle_;
+        last_checkpoint = wall();
+        if (!settings_.quiet) log_line("  checkpoint " + r.checkpoints.back());
+      }
     }
-    h = hydro_->step(ts.dt, cycle_);
-    // the last step lands on the end time exactly (Real(t_end - t) is rounded in float builds)
-    t_ = ts.limit == "end" ? t_end : t_ + double(ts.dt);
-    ++cycle_;
-    dt_old_ = ts.dt;
-    if (!h.ok) break;
-    const bool at_end = t_ >= t_end * (1 - 1e-12);
-    if (!settings_.quiet && root && (cycle_ % scene_.output.log_every == 0 || at_end)) {
-      const double w = wall(), done = (t_ - t_begin) / (t_end - t_begin);
-      log_cycle(cycle_, t_, double(ts.dt), ts.limit, ts.cell, w, t_ / t_end,
-                done > 0 ? w * (1 - done) / done : -1);
-    }
-    if (write && writer_ && scene_.output.interval > 0 && t_ >= next_dump_ * (1 - 1e-12) &&
-        !at_end) {
-      files_.push_back(write_dump(t_, cycle_));
-      next_dump_ += scene_.output.interval;
-    }
-    // Every rank learns whether any rank saw a stop signal or reached the checkpoint wall
-    // time, so all stop or checkpoint after the same cycle.
-    int flags = 0;
-    if (settings_.watch_signals && signals::requested()) flags |= 1;
-    if (checkpoints && scene_.output.checkpoint_seconds > 0 &&
-        wall() - last_checkpoint >= scene_.output.checkpoint_seconds)
-      flags |= 2;
-    MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &flags, 1, MPI_INT, MPI_BOR, mesh_->comm()));
-    if (flags & 1) {
-      interrupted = !at_end;
-      break;
-    }
-    if (checkpoints && !at_end &&
-        ((scene_.output.checkpoint_cycles > 0 && cycle_ % scene_.output.checkpoint_cycles == 0) ||
-         (flags & 2))) {
-      r.checkpoints.push_back(write_checkpoint_now());
-      checkpoint_cycle = cycle_;
-      last_checkpoint = wall();
-      if (!settings_.quiet) log_line("  checkpoint " + r.checkpoints.back());
-    }
+  } catch (const CollectiveError& e) {
+    output_failed(r, e.what());
   }
   r.cycles = cycle_;
   r.time = t_;
@@ -772,14 +776,33 @@ RunResult Simulation::run() {
              : t_ >= t_end * (1 - 1e-12) ? Ending::EndTime
                                          : Ending::MaxCycles;
   // A run that stops before its end time leaves a checkpoint to continue from.
-  if (write && r.ok && (r.checkpoints.empty() || checkpoint_cycle != cycle_) &&
-      (r.ending == Ending::Interrupted || (r.ending == Ending::MaxCycles && checkpoints)))
-    r.checkpoints.push_back(write_checkpoint_now());
-  if (write && writer_) files_.push_back(write_dump(t_, cycle_));
+  try {
+    if (write && r.ok && (r.checkpoints.empty() || checkpoint_cycle != cycle_) &&
+        (r.ending == Ending::Interrupted || (r.ending == Ending::MaxCycles && checkpoints)))
+      r.checkpoints.push_back(write_checkpoint_now());
+    if (write && writer_) files_.push_back(write_dump(t_, cycle_));
+  } catch (const CollectiveError& e) {
+    output_failed(r, e.what());
+  }
   r.files = files_;
   r.wall = wall();
   if (write) write_summary(r);
   return r;
+}
+
+void Simulation::output_failed(RunResult& r, const std::string& what) {
+  r.cycles = cycle_;
+  r.time = t_;
+  r.end = hydro_->totals();
+  r.files = files_;
+  r.output_error = what;
+  std::string note = "; nothing else was written";
+  try {
+    write_summary(r);
+    note = "; summary.json records the failure";
+  } catch (const std::exception&) {
+  }
+  throw CollectiveError(what + note);
 }
 
 void Simulation::write_summary(const RunResult& r) const {
@@ -812,8 +835,9 @@ void Simulation::write_summary(const RunResult& r) const {
   js["scene"] = scene_.name;
   js["deck"] = scene_.file;
   js["version"] = MINIPAGOSA_VERSION;
-  js["status"] = status_name(r.ending);
-  js["ended_by"] = ending_text(r.ending);
+  js["status"] = r.output_error.empty() ? status_name(r.ending) : "output-failed";
+  js["ended_by"] = r.output_error.empty() ? ending_text(r.ending) : "output failed";
+  if (!r.output_error.empty()) js["output_error"] = r.output_error;
   js["ranks"] = mesh_->nranks();
   js["decomposition"] = mesh_->dims();
   js["kokkos_execution_space"] = ExecSpace::name();

@@ -37,6 +37,7 @@ struct RunResult {
   std::vector<std::string> checkpoints;  // written by this run
   std::string restarted_from;            // checkpoint path, or empty
   long first_cycle = 0;                  // cycle this process started at (restart: > 0)
+  std::string output_error;              // a dump or checkpoint that could not be written
 };
 
 class Simulation {
@@ -70,6 +71,9 @@ class Simulation {
   std::string write_dump(double t, long cycle);
   void write_summary(const RunResult& r) const;
   std::string checkpoint_meta() const;
+  // A dump or checkpoint failed on every rank: record it in summary.json (if that can still be
+  // written) and throw CollectiveError with the reason.
+  [[noreturn]] void output_failed(RunResult& r, const std::string& what);
   void prepare_output_dir();
 
   Scene scene_;

@@ -45,6 +45,7 @@ void write_checkpoint(const Mesh& mesh, const std::string& path,
     MPI_Comm_rank(comm, &rank);
     if (rank == 0) std::remove(tmp.c_str());
     throw CollectiveError("cannot write checkpoint " + path + ": " + e.what() +
+                          disk_space_note(path) +
                           " (partial file removed; earlier checkpoints are intact)");
   }
 }

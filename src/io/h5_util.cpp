@@ -1,6 +1,7 @@
 #include "io/h5_util.hpp"
 
 #include <fcntl.h>
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -37,6 +38,19 @@ void write_text_atomically(const std::string& path, const std::string& text) {
     std::remove(tmp.c_str());
     throw RunError("cannot rename " + tmp + " to " + path + ": " + std::strerror(err));
   }
+}
+
+std::string disk_space_note(const std::string& path) {
+  const auto slash = path.rfind('/');
+  const std::string dir = slash == std::string::npos ? "." : path.substr(0, slash);
+  struct statvfs st;
+  if (statvfs(dir.c_str(), &st) != 0) return "";
+  const double free_bytes = double(st.f_bavail) * double(st.f_frsize);
+  if (free_bytes >= 4.0 * 1024 * 1024) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "; no space left on device (%.0f KiB free on the file system)",
+                free_bytes / 1024);
+  return text;
 }
 
 }  // namespace mp

@@ -17,6 +17,9 @@ namespace mp {
 // removes the temporary file and throws RunError naming the file and the system's reason
 // ("No space left on device").
 void write_text_atomically(const std::string& path, const std::string& text);
+// "; no space left on device (N KiB free ...)" when the file system holding `path` is (nearly)
+// full, else "": HDF5's MPI-IO layer reports a failed write without the system's reason.
+std::string disk_space_note(const std::string& path);
 }  // namespace mp
 
 namespace mp::h5 {

@@ -117,7 +117,7 @@ std::string Hdf5Writer::write(const std::vector<OutputField>& fields, double tim
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
     if (rank == 0) std::remove(tmp.c_str());
-    throw CollectiveError("cannot write dump " + path + ": " + e.what() +
+    throw CollectiveError("cannot write dump " + path + ": " + e.what() + disk_space_note(path) +
                           " (partial file removed; earlier dumps are intact)");
   }
 
