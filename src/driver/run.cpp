@@ -93,7 +93,7 @@ void check_output_path(const std::string& dir, const Scene& s) {
 }
 
 // Files of an earlier run in `dir`: its summary, XDMF series, dumps and checkpoints.
-std::vector<std::string> earlier_outputs(const std::string& dir, const std::string& basename) {
+std::vector<std::string> earlier_outputs(const std::string& dir) {
   std::vector<std::string> out;
   DIR* dp = opendir(dir.c_str());
   if (!dp) return out;
@@ -106,7 +106,6 @@ std::vector<std::string> earlier_outputs(const std::string& dir, const std::stri
   }
   closedir(dp);
   std::sort(out.begin(), out.end());
-  (void)basename;
   return out;
 }
 
@@ -221,7 +220,7 @@ int run(const CommandLine& cl) {
         }
         return;
       }
-      const auto old = earlier_outputs(dir, scene.output.basename);
+      const auto old = earlier_outputs(dir);
       if (old.empty()) return;
       if (!cl.overwrite)
         throw InputError(

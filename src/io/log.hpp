@@ -8,6 +8,5 @@ namespace mp {
 void log_line(const std::string& text);  // rank 0 prints, others stay silent
 void log_cycle(long cycle, double t, double dt, const std::string& limit,
                const std::array<int, 3>& cell, double wall, double progress, double eta = -1);
-std::string json_escape(const std::string& s);
 
 }  // namespace mp
