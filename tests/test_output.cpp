@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <regex>
@@ -146,6 +148,30 @@ TEST_F(Output, FinalDumpSummaryAndXdmfMatchTheRun) {
               summary["files"].size());
   EXPECT_EQ(grids, static_cast<int>(summary["files"].size()));
   EXPECT_EQ(grids, 2);  // first and last (output.interval 0)
+}
+
+// summary.json stays JSON whatever the numbers: NaN and infinities become null, each listed by
+// its key under non_finite, and a run whose totals are not finite is never "completed".
+TEST(Summary, NonFiniteNumbersAreNullAndListed) {
+  auto ran =
+      test::run_scene(test::load_scene("sod2.yaml", {"mesh.cells=[20,2,2]", "time.max_cycles=3"}));
+  RunResult r = ran.result;
+  r.end.kinetic = std::numeric_limits<double>::quiet_NaN();
+  r.end.momentum[1] = std::numeric_limits<double>::infinity();
+  r.end.material_mass[1] = -std::numeric_limits<double>::infinity();
+  const std::string text = ran.sim->summary_json(r);
+  const auto j = nlohmann::json::parse(text);  // throws (fails the test) if not valid JSON
+  std::printf("  non_finite: %s\n", j["non_finite"].dump().c_str());
+  EXPECT_TRUE(j["end"]["kinetic_energy"].is_null());
+  EXPECT_TRUE(j["end"]["total_energy"].is_null());
+  EXPECT_TRUE(j["end"]["momentum"][1].is_null());
+  EXPECT_TRUE(j["end"]["material_mass"]["test_gas"].is_null());
+  EXPECT_TRUE(j["total_energy_change_relative"].is_null());
+  EXPECT_EQ(j["end"]["mass"].get<double>(), r.end.mass);
+  EXPECT_EQ(j["non_finite"], (std::vector<std::string>{
+                                 "end.momentum.1", "end.kinetic_energy", "end.total_energy",
+                                 "end.material_mass.test_gas", "total_energy_change_relative"}));
+  EXPECT_EQ(j["status"], "max_cycles");  // the ending of the run the result came from
 }
 
 TEST_F(Output, MaxCyclesIsNamedAndNotCompleted) {

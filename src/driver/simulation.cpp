@@ -806,6 +806,12 @@ void Simulation::output_failed(RunResult& r, const std::string& what) {
 }
 
 void Simulation::write_summary(const RunResult& r) const {
+  const std::string path = settings_.output_dir + "/summary.json";
+  const std::string text = summary_json(r);
+  h5::on_root(mesh_->comm(), [&] { write_text_atomically(path, text); });
+}
+
+std::string Simulation::summary_json(const RunResult& r) const {
   // Non-finite numbers are not JSON: each becomes null and its key is listed in "non_finite".
   std::vector<std::string> non_finite;
   auto num = [&](double v, const std::string& key) -> nlohmann::ordered_json {
@@ -874,8 +880,7 @@ void Simulation::write_summary(const RunResult& r) const {
                      {"pressure", num(h.p, "failure.pressure")}};
   }
   js["non_finite"] = non_finite;
-  const std::string path = settings_.output_dir + "/summary.json";
-  h5::on_root(mesh_->comm(), [&] { write_text_atomically(path, js.dump(2) + "\n"); });
+  return js.dump(2) + "\n";
 }
 
 }  // namespace mp

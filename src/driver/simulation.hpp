@@ -59,6 +59,9 @@ class Simulation {
   std::string write_checkpoint_now();
   // The fields a checkpoint holds (cell rho, e; node u, v, w; per material alpha, rho, e).
   std::vector<OutputField> checkpoint_fields() const;
+  // The text of summary.json for a result (always valid JSON: a non-finite number is null and
+  // its key is listed under "non_finite").
+  std::string summary_json(const RunResult& r) const;
   double time() const { return t_; }
   long cycle() const { return cycle_; }
 
