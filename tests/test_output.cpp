@@ -416,4 +416,45 @@ TEST_F(Output, KilledDuringCheckpointsAlwaysRestartsAndFinishesEqual) {
               s["restart_cycle"].get<long>(), names.size(), total);
 }
 
+// Extremes: CFL 1.0, a density ratio of 1e6 and a pressure ratio of 1e12 across the diaphragm,
+// single- and two-material. Each run either ends cleanly (exit 0, every value of every dataset
+// of its final dump finite, nothing non-finite in the summary) or stops with exit 3 naming the
+// cell; none ends "completed" with a NaN in a file.
+TEST_F(Output, ExtremesRunCleanOrStopNamingTheCell) {
+  int n = 0;
+  for (const std::string deck : {"sod_x", "sod2"})
+    for (const std::string extreme :
+         {"time.cfl=1.0", "regions.1.density=1e6", "regions.0.pressure=1e-12"}) {
+      const std::string out = "extreme_" + std::to_string(n++);
+      const Result r = run(
+          args(deck + ".yaml",
+               {"--set", "mesh.cells=[40,2,2]", "--set", extreme, "--set", "time.max_cycles=5000"},
+               out));
+      const auto s = nlohmann::json::parse(read(dir_ / out / "summary.json"));
+      long nonfinite_values = 0, values = 0;
+      char dump[64];
+      std::snprintf(dump, sizeof dump, "%s_%06ld.h5", deck.c_str(), s["cycles"].get<long>());
+      for (const auto& name : dataset_names((dir_ / out / dump).string()))
+        for (double v : read_dataset((dir_ / out / dump).string(), name)) {
+          ++values;
+          nonfinite_values += std::isfinite(v) ? 0 : 1;
+        }
+      std::printf(
+          "  %-5s %-26s exit %d, %s after %ld cycles, %ld of %ld dumped values "
+          "non-finite\n",
+          deck.c_str(), extreme.c_str(), r.status, s["status"].get<std::string>().c_str(),
+          s["cycles"].get<long>(), nonfinite_values, values);
+      EXPECT_GT(values, 0) << deck << " " << extreme;
+      if (r.status == 0) {
+        EXPECT_EQ(s["status"], "completed") << deck << " " << extreme;
+        EXPECT_EQ(s["non_finite"].size(), 0u) << deck << " " << extreme;
+        EXPECT_EQ(nonfinite_values, 0) << deck << " " << extreme;
+      } else {
+        EXPECT_EQ(r.status, 3) << deck << " " << extreme << ": " << r.err;
+        EXPECT_TRUE(holds(r.err, "in cell (")) << r.err;
+        EXPECT_EQ(s["status"], "non-physical");
+      }
+    }
+}
+
 }  // namespace
