@@ -253,4 +253,27 @@ TEST(RestartRefusal, KeepsTheNewestCheckpoints) {
   EXPECT_EQ(cycles, (std::vector<long>{16, 20}));
 }
 
+TEST(RestartRefusal, WallClockCheckpointsFollowTheSlowestRank) {
+  // checkpoint_every.seconds: a rank whose clock says a checkpoint is due makes every rank
+  // write it; with 1 ns every cycle is due.
+  SharedDir dir;
+  auto d = deck("dense");
+  d.push_back("time.max_cycles=6");
+  d.push_back("output.checkpoint_every={seconds: 1.0e-9}");
+  d.push_back("output.checkpoint_keep=10");
+  RunSettings settings;
+  settings.quiet = true;
+  settings.output_dir = dir.path;
+  Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+  sim.initialize();
+  const RunResult r = sim.run();
+  std::vector<long> cycles;
+  for (const auto& c : list_checkpoints(dir.path, "triple_point")) cycles.push_back(c.first);
+  if (world_rank() == 0)
+    std::printf("  checkpoints by wall clock at cycles %s\n",
+                ::testing::PrintToString(cycles).c_str());
+  EXPECT_EQ(cycles, (std::vector<long>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(r.checkpoints.size(), 6u);
+}
+
 }  // namespace
