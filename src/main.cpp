@@ -23,6 +23,28 @@ int main(int argc, char** argv) {
   std::vector<char*> kargs{argv[0]}, args{argv[0]};
   for (int i = 1; i < argc; ++i)
     (std::string(argv[i]).rfind("--kokkos", 0) == 0 ? kargs : args).push_back(argv[i]);
+  // Kokkos aborts (or silently ignores) a bad thread count; say what is wrong instead.
+  for (std::size_t i = 1; i < kargs.size(); ++i) {
+    const std::string a = kargs[i];
+    for (const char* name : {"--kokkos-threads", "--kokkos-num-threads"}) {
+      const std::string key = name;
+      if (a.compare(0, key.size(), key) != 0) continue;
+      if (a.size() > key.size() && a[key.size()] != '=') continue;  // another option
+      const std::string v = a.size() > key.size() ? a.substr(key.size() + 1) : "";
+      bool ok =
+          !v.empty() && v.size() <= 6 && v.find_first_not_of("0123456789") == std::string::npos;
+      if (ok) ok = std::stol(v) >= 1 && std::stol(v) <= 65536;
+      if (!ok) {
+        if (rank == 0)
+          std::fprintf(stderr,
+                       "minipagosa: error: %s: expected %s=N with N a whole number from 1 to "
+                       "65536, got '%s'\n",
+                       a.c_str(), name, v.c_str());
+        MPI_Finalize();
+        return 2;
+      }
+    }
+  }
   int kargc = static_cast<int>(kargs.size());
   Kokkos::initialize(kargc, kargs.data());
   int rc = 0;
@@ -40,7 +62,15 @@ int main(int argc, char** argv) {
         ->take_all();
     app.add_option("-o,--output", cl.output, "output directory (default: the deck's output.dir)");
     app.add_flag("-q,--quiet", cl.quiet, "no per-cycle log lines");
-    app.add_flag("--check", cl.check_only, "validate the deck and the decomposition, then exit");
+    app.add_flag("--check", cl.check_only,
+                 "dry run: validate the deck, print the decomposition and the memory estimate, "
+                 "allocate and write nothing");
+    app.add_option("--restart", cl.restart,
+                   "continue from a checkpoint: a path, or 'latest' (the newest in the output "
+                   "directory)");
+    app.add_flag("--overwrite", cl.overwrite,
+                 "replace an earlier run's files (summary.json, *.xmf, *.h5) in the output "
+                 "directory instead of refusing to mix runs");
     app.set_version_flag("-V,--version", std::string("minipagosa ") + MINIPAGOSA_VERSION +
                                              " (Kokkos " + std::to_string(KOKKOS_VERSION) + ")");
     try {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -212,14 +213,13 @@ TEST_F(Cli, GoodRunWritesDumpsAndSummary) {
   const Result r =
       run({sod, "--set", "mesh.cells=[40,2,2]", "--set", "time.end=0.02", "--output", "run"});
   ASSERT_EQ(r.status, 0) << r.err;
-  const std::string summary = read(dir_ / "run" / "summary.json");
-  EXPECT_TRUE(holds(summary, "\"status\": \"completed\"")) << summary;
-  EXPECT_TRUE(holds(summary, "\"cells\": [40, 2, 2]")) << summary;
-  const std::string key = "\"cycles\": ";
-  const auto at = summary.find(key);
-  ASSERT_NE(at, std::string::npos) << summary;
-  const long cycles = std::strtol(summary.c_str() + at + key.size(), nullptr, 10);
+  const auto summary = nlohmann::json::parse(read(dir_ / "run" / "summary.json"));
+  EXPECT_EQ(summary["status"], "completed") << summary;
+  EXPECT_EQ(summary["ended_by"], "end time reached") << summary;
+  EXPECT_EQ(summary["cells"], (std::vector<int>{40, 2, 2})) << summary;
+  const long cycles = summary["cycles"].get<long>();
   EXPECT_GT(cycles, 0);
+  EXPECT_TRUE(holds(r.out, "done (end time reached)")) << r.out;
   char last[64];
   std::snprintf(last, sizeof last, "sod_x_%06ld.h5", cycles);
   EXPECT_TRUE(fs::exists(dir_ / "run" / "sod_x_000000.h5"));
@@ -245,10 +245,10 @@ TEST_F(Cli, NonPhysicalRunExit3WithSummary) {
   EXPECT_TRUE(holds(r.err, "density = ")) << r.err;
   EXPECT_TRUE(holds(r.err, "energy = ")) << r.err;
   EXPECT_TRUE(holds(r.err, "pressure = ")) << r.err;
-  const std::string summary = read(dir_ / "bad" / "summary.json");
-  EXPECT_TRUE(holds(summary, "\"failure\"")) << summary;
-  EXPECT_TRUE(holds(summary, "\"status\": \"stopped: ")) << summary;
-  EXPECT_TRUE(holds(summary, "\"cell\": [19, 0, 0]")) << summary;
+  const auto summary = nlohmann::json::parse(read(dir_ / "bad" / "summary.json"));
+  EXPECT_EQ(summary["status"], "non-physical") << summary;
+  EXPECT_EQ(summary["ended_by"], "non-physical state") << summary;
+  EXPECT_EQ(summary["failure"]["cell"], (std::vector<int>{19, 0, 0})) << summary;
   EXPECT_TRUE(fs::exists(dir_ / "bad" / "sod_x_000001.h5"));
   for (const auto& e : fs::directory_iterator(dir_ / "bad"))
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
@@ -260,9 +260,9 @@ TEST_F(Cli, GoodRunOnTwoRanks) {
       run({sod, "--set", "mesh.cells=[40,2,2]", "--set", "time.end=0.02", "--output", "run2"},
           "mpiexec -np 2 --oversubscribe ");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
-  const std::string summary = read(dir_ / "run2" / "summary.json");
-  EXPECT_TRUE(holds(summary, "\"status\": \"completed\"")) << summary;
-  EXPECT_TRUE(holds(summary, "\"ranks\": 2")) << summary;
+  const auto summary = nlohmann::json::parse(read(dir_ / "run2" / "summary.json"));
+  EXPECT_EQ(summary["status"], "completed") << summary;
+  EXPECT_EQ(summary["ranks"], 2) << summary;
   EXPECT_TRUE(fs::exists(dir_ / "run2" / "sod_x.xmf"));
 }
 

@@ -48,6 +48,8 @@ class Burn {
   const Field3& fraction() const { return f_; }
   const Field3& lighting_time() const { return t_light_; }
   double time() const { return time_; }
+  // The clock a restart resumes from (the run's time; the module's starts at 0 with the run).
+  void set_time(double t) { time_ = t; }
   const BurnParams& params() const { return params_; }
 
  private:

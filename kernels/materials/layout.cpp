@@ -290,6 +290,33 @@ Field3 MaterialState::fraction(int m) const {
   return f;
 }
 
+Field3 MaterialState::material_field(int m, int which) const {
+  if (which == 0) return fraction(m);
+  Field3 f(Kokkos::view_alloc(Kokkos::WithoutInitializing, "material_field"), ex_, ey_, ez_);
+  if (kind_ == LayoutKind::Dense) {
+    const DenseDev d = dense_;
+    Kokkos::parallel_for(
+        "matter::material_field", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+        KOKKOS_LAMBDA(int i, int j, int k) {
+          f(i, j, k) = which == 1 ? d.rho(m, i, j, k) : d.e(m, i, j, k);
+        });
+    return f;
+  }
+  const CompactDev d = compact_;
+  auto crho = rho_, ce = e_;
+  Kokkos::parallel_for(
+      "matter::material_field", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        const int id = d.mat(i, j, k);
+        Real v = id == m ? (which == 1 ? crho(i, j, k) : ce(i, j, k)) : Real(0);
+        if (id < 0)
+          for (int q = d.first(i, j, k); q < d.first(i, j, k) + d.nm(i, j, k); ++q)
+            if (d.smat(q) == m) v = which == 1 ? d.srho(q) : d.se(q);
+        f(i, j, k) = v;
+      });
+  return f;
+}
+
 long MaterialState::mixed_cells() const {
   if (kind_ == LayoutKind::Compact) return compact_.nmixed;
   const DenseDev d = dense_;

@@ -229,6 +229,9 @@ class MaterialState {
   std::vector<double> material_masses() const;
   // Volume fraction of material m on the block (ghosts included), for output.
   Field3 fraction(int m) const;
+  // Density (which == 1) or specific internal energy (which == 2) of material m on the block,
+  // as stored (0 where a compact cell lacks m); which == 0 is fraction(m). For checkpoints.
+  Field3 material_field(int m, int which) const;
   // Number of mixed cells and slots owned by this rank's block (ghosts included) and the bytes
   // the per-material state takes (for the perf harness).
   long mixed_cells() const;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -236,6 +237,51 @@ void set_path(YAML::Node node, const std::vector<std::string>& keys, std::size_t
 }
 }  // namespace
 
+namespace {
+// A message quoting the deck's bytes, with anything unprintable (binary garbage) as \xNN.
+std::string printable(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    }
+  }
+  return out;
+}
+
+// yaml-cpp keeps both entries of a key written twice (and lookups see the first): reject
+// duplicates naming both lines, and keys that are not plain scalars.
+void check_keys(const YAML::Node& n, const std::string& path, const std::string& file) {
+  if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      check_keys(n[i], path + (path.empty() ? "" : ".") + std::to_string(i), file);
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::map<std::string, int> seen;  // key -> line (1-based)
+  for (auto it = n.begin(); it != n.end(); ++it) {
+    const YAML::Mark m = it->first.Mark();
+    const std::string where =
+        file + ":" + std::to_string(m.line + 1) + ":" + std::to_string(m.column + 1) + ": ";
+    if (!it->first.IsScalar())
+      throw InputError(where + "key under '" + (path.empty() ? "<top>" : path) +
+                       "': a key must be a plain name, not a list or map");
+    const std::string key = it->first.Scalar();
+    const std::string full = path.empty() ? key : path + "." + key;
+    const auto [at, fresh] = seen.emplace(key, m.line + 1);
+    if (!fresh)
+      throw InputError(where + "key '" + full + "': given twice, at lines " +
+                       std::to_string(at->second) + " and " + std::to_string(m.line + 1) +
+                       "; keep one");
+    check_keys(it->second, full, file);
+  }
+}
+}  // namespace
+
 Deck Deck::parse(const std::string& text, const std::string& name,
                  const std::vector<std::string>& overrides) {
   Deck d;
@@ -245,10 +291,11 @@ Deck Deck::parse(const std::string& text, const std::string& name,
   } catch (const YAML::ParserException& e) {
     std::ostringstream os;
     os << name << ":" << e.mark.line + 1 << ":" << e.mark.column + 1
-       << ": YAML syntax error: " << e.msg;
+       << ": YAML syntax error: " << printable(e.msg);
     throw InputError(os.str());
   }
   if (!d.root_.IsMap()) throw InputError(name + ": a scene deck must be a YAML map");
+  check_keys(d.root_, "", name);
   auto ov = std::make_shared<std::map<std::string, std::string>>();
   for (const auto& o : overrides) {
     const auto eq = o.find('=');
@@ -280,6 +327,26 @@ Deck Deck::load(const std::string& file, const std::vector<std::string>& overrid
   std::stringstream ss;
   ss << in.rdbuf();
   return parse(ss.str(), file, overrides);
+}
+
+namespace {
+void flatten(const YAML::Node& n, const std::string& path,
+             std::map<std::string, std::string>& out) {
+  if (n.IsMap()) {
+    for (auto it = n.begin(); it != n.end(); ++it)
+      flatten(it->second, path.empty() ? it->first.Scalar() : path + "." + it->first.Scalar(), out);
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i) flatten(n[i], path + "." + std::to_string(i), out);
+  } else if (n.IsScalar()) {
+    out[path] = n.Scalar();
+  }
+}
+}  // namespace
+
+std::map<std::string, std::string> Deck::values() const {
+  std::map<std::string, std::string> out;
+  flatten(root_, "", out);
+  return out;
 }
 
 DeckNode Deck::root() const {

@@ -82,6 +82,9 @@ class Deck {
                     const std::vector<std::string>& overrides = {});
   DeckNode root() const;
   const std::string& file() const { return *file_; }
+  // Every scalar of the deck (overrides applied) as "dotted.path" -> text, for comparing the
+  // deck of a checkpoint with the deck of a restart.
+  std::map<std::string, std::string> values() const;
 
  private:
   YAML::Node root_;

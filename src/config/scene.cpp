@@ -7,11 +7,15 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace mp {
 
 namespace {
 constexpr double kHuge = std::numeric_limits<double>::max();
+// Largest initial density, pressure, energy or speed: beyond it the products a cycle forms
+// (rho e V, rho u^2, c^2) overflow a double, and a float field holds at most 3.4e38.
+constexpr double kState = 1e30;
 
 BoundaryKind boundary_kind(const DeckNode& n, const std::string& key) {
   const std::string v = n.get_enum(key, {"reflective", "outflow", "periodic"});
@@ -24,8 +28,8 @@ void read_mesh(const DeckNode& root, Scene& s) {
   const DeckNode m = root.child("mesh");
   m.expect_keys({"cells", "lo", "hi", "ranks"});
   s.mesh.cells = m.get_int3("cells", 1, 1 << 20);
-  s.mesh.lo = m.get_real3("lo", -kHuge, kHuge, {0, 0, 0});
-  s.mesh.hi = m.get_real3("hi", -kHuge, kHuge);
+  s.mesh.lo = m.get_real3("lo", -kState, kState, {0, 0, 0});
+  s.mesh.hi = m.get_real3("hi", -kState, kState);
   s.mesh.ranks = m.get_int3("ranks", 0, 1 << 20, {0, 0, 0});
   for (int d = 0; d < 3; ++d)
     if (!(s.mesh.hi[d] > s.mesh.lo[d]))
@@ -52,6 +56,36 @@ void read_mesh(const DeckNode& root, Scene& s) {
         a.fail("periodic must be set on both faces of an axis (or as '" + axis + ": periodic')");
     }
   }
+}
+
+// Physical range of each EOS parameter (a value outside makes the EOS non-physical: no sound
+// speed, pressure of the wrong sign under compression, a decay that never ends).
+struct ParamRange {
+  double lo;
+  bool lo_open;
+  double hi;
+  const char* what;
+};
+const ParamRange* param_range(const std::string& eos, const std::string& key) {
+  static const std::map<std::string, ParamRange> ranges = {
+      {"ideal_gas.gamma", {1, true, 100, "in (1, 100]"}},
+      {"stiffened_gas.gamma", {1, true, 100, "in (1, 100]"}},
+      {"stiffened_gas.p_inf", {0, false, 1e30, ">= 0"}},
+      {"mie_gruneisen.c0", {0, true, 1e30, "> 0"}},
+      {"mie_gruneisen.s", {0, false, 100, "in [0, 100]"}},
+      {"mie_gruneisen.gamma0", {0, false, 100, "in [0, 100]"}},
+      {"polynomial.A1", {0, true, 1e30, "> 0 (the bulk modulus)"}},
+      {"jwl.A", {0, false, 1e30, ">= 0"}},
+      {"jwl.B", {0, false, 1e30, ">= 0"}},
+      {"jwl.R1", {0, true, 1e3, "in (0, 1000]"}},
+      {"jwl.R2", {0, true, 1e3, "in (0, 1000]"}},
+      {"jwl.omega", {0, true, 10, "in (0, 10]"}},
+      {"jwl.E0", {0, false, 1e30, ">= 0"}},
+      {"jwl.D", {0, true, 1e30, "> 0"}},
+      {"jwl.p_cj", {0, true, 1e30, "> 0"}},
+  };
+  const auto it = ranges.find(eos + "." + key);
+  return it == ranges.end() ? nullptr : &it->second;
 }
 
 // EOS parameter names by kind (units: README, "Units"; kernels/materials/library.hpp).
@@ -209,8 +243,20 @@ void read_materials(const DeckNode& root, Scene& s) {
     for (const auto& k : names)
       if (!spec.params.count(k))
         m.fail("the " + spec.eos + " EOS needs parameter '" + k + "' under 'params'");
-    if (spec.eos == "ideal_gas" && !(spec.params["gamma"] > 1))
-      m.child("params").child("gamma").fail("gamma must exceed 1");
+    // Physical ranges, checked where the value was given (params, or the gamma shorthand).
+    for (const auto& k : names) {
+      const ParamRange* range = param_range(spec.eos, k);
+      if (!range) continue;
+      const double v = spec.params[k];
+      const bool ok = (range->lo_open ? v > range->lo : v >= range->lo) && v <= range->hi;
+      if (ok) continue;
+      const DeckNode at = m.has("params") && m.child("params").has(k) ? m.child("params").child(k)
+                          : (k == "gamma" && m.has("gamma"))          ? m.child("gamma")
+                                                                      : m;
+      std::ostringstream os;
+      os << "the " << spec.eos << " parameter " << k << " = " << v << " must be " << range->what;
+      at.fail(os.str());
+    }
     // Tension cutoff: the most tension (Mbar) the material carries before it cavitates or
     // spalls; a floor on the pressure the hydro uses, so never above zero.
     if (m.has("p_min")) {
@@ -373,27 +419,27 @@ void read_regions(const DeckNode& root, Scene& s) {
     read_shape(r, s, reg.shape);
     if (first && reg.shape.kind != "all")
       r.fail("the first region must be 'shape: all' (it fills the whole mesh)");
-    reg.density = r.get_real("density", 0, kHuge);
+    reg.density = r.get_real("density", 0, kState);
     if (!(reg.density > 0)) r.child("density").fail("density must be positive");
     if (r.has("pressure") == r.has("energy"))
       r.fail("give exactly one of 'pressure' or 'energy' (specific internal energy)");
     reg.has_pressure = r.has("pressure");
     if (reg.has_pressure) {
-      reg.pressure = r.get_real("pressure", 0, kHuge);
+      reg.pressure = r.get_real("pressure", 0, kState);
     } else {
-      reg.energy = r.get_real("energy", 0, kHuge);
+      reg.energy = r.get_real("energy", 0, kState);
     }
     if (r.has("velocity") && r.has("radial_velocity"))
       r.fail("give 'velocity' or 'radial_velocity', not both");
-    reg.velocity = r.get_real3("velocity", -kHuge, kHuge, {0, 0, 0});
+    reg.velocity = r.get_real3("velocity", -kState, kState, {0, 0, 0});
     if (r.has("radial_velocity")) {
       const DeckNode rv = r.child("radial_velocity");
       rv.expect_keys({"speed", "center"});
       reg.radial_velocity = true;
-      reg.velocity[0] = rv.get_real("speed", -kHuge, kHuge);
+      reg.velocity[0] = rv.get_real("speed", -kState, kState);
       reg.velocity_center = rv.get_real3("center", -kHuge, kHuge, {0, 0, 0});
     }
-    reg.deposit = r.get_real("deposit", 0, kHuge, 0);
+    reg.deposit = r.get_real("deposit", 0, kState, 0);
     if (reg.deposit > 0 && count_cell_centres(s.mesh, reg.shape) == 0)
       r.child("deposit").fail("the region holds no cell centre to deposit energy in; enlarge it");
     if (r.has("wave")) {
@@ -417,6 +463,11 @@ Scene read_scene(const Deck& deck) {
   Scene s;
   s.file = deck.file();
   s.name = root.get_string("scene");
+  if (s.name.empty())
+    root.child("scene").fail("the scene name is empty; it names the output files");
+  if (s.name.size() > 128)
+    root.child("scene").fail("the scene name has " + std::to_string(s.name.size()) +
+                             " characters; at most 128 (it names the output files)");
   for (char ch : s.name)
     if (!(std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-'))
       root.child("scene").fail("scene name may hold only letters, digits, '_' and '-'");
@@ -467,12 +518,21 @@ Scene read_scene(const Deck& deck) {
   s.output.basename = s.name;
   if (root.has("output")) {
     const DeckNode o = root.child("output");
-    o.expect_keys({"dir", "interval", "write", "log_every"});
+    o.expect_keys({"dir", "interval", "write", "log_every", "checkpoint_every", "checkpoint_keep"});
     s.output.dir = o.get_string("dir", s.output.dir);
     s.output.interval = o.get_real("interval", 0, kHuge, 0);
     s.output.write = o.get_bool("write", true);
     s.output.log_every = o.get_int("log_every", 1, 1000000000L, s.output.log_every);
+    if (o.has("checkpoint_every")) {
+      const DeckNode c = o.child("checkpoint_every");
+      c.expect_keys({"cycles", "seconds"});
+      s.output.checkpoint_cycles = c.get_int("cycles", 0, 1000000000L, 0);
+      s.output.checkpoint_seconds = c.get_real("seconds", 0, 1e9, 0);
+    }
+    s.output.checkpoint_keep =
+        static_cast<int>(o.get_int("checkpoint_keep", 1, 1000, s.output.checkpoint_keep));
   }
+  s.deck_values = deck.values();
   return s;
 }
 

@@ -100,6 +100,11 @@ struct OutputSpec {
   double interval = 0;   // simulated time between dumps; 0: first and last only
   bool write = true;     // false: no HDF5 dumps, only the summary
   long log_every = 10;   // cycles between log lines
+  // Checkpoints (output.checkpoint_every: {cycles: N, seconds: S}; 0: not by that measure)
+  // and how many of the newest to keep (output.checkpoint_keep).
+  long checkpoint_cycles = 0;
+  double checkpoint_seconds = 0;
+  int checkpoint_keep = 2;
 };
 
 struct Scene {
@@ -112,6 +117,7 @@ struct Scene {
   std::vector<MaterialSpec> materials;
   std::vector<RegionSpec> regions;
   OutputSpec output;
+  std::map<std::string, std::string> deck_values;  // Deck::values(), for restart checks
 };
 
 // Reads and validates the whole deck; throws InputError naming file:line and key.

@@ -17,6 +17,13 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A RunError that every rank of the communicator throws together (the I/O helpers agree on
+// failure before throwing), so the program can end without MPI_Abort.
+class CollectiveError : public RunError {
+ public:
+  using RunError::RunError;
+};
+
 [[noreturn]] void throw_mpi_error(int code, const char* call, const char* file, int line);
 [[noreturn]] void throw_hdf5_error(const char* call, const char* file, int line);
 

@@ -11,10 +11,15 @@ struct CommandLine {
   std::string output;
   bool quiet = false;
   bool check_only = false;
+  std::string restart;  // checkpoint path, or "latest" (newest in the output directory)
+  bool overwrite = false;
 };
 
-// Exit codes: 0 completed; 2 bad input (nothing written); 3 the run went non-physical (a final
-// dump and the summary are written); 4 another run-time failure (I/O, MPI).
+// Exit codes: 0 completed (end time or max_cycles reached); 2 bad input (nothing written);
+// 3 the run went non-physical (a final dump and the summary are written); 4 another run-time
+// failure (I/O: the message names the file and the reason, MPI); 5 interrupted by SIGTERM or
+// SIGINT (checkpoint, final dump and summary written: restartable); 128 + signal: a second
+// signal stopped the run at once.
 int run(const CommandLine& cl);
 
 }  // namespace mp

@@ -1,16 +1,24 @@
 #include "driver/simulation.hpp"
 
+#include <dirent.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "core/error.hpp"
 #include "core/math.hpp"
+#include "driver/signals.hpp"
+#include "io/checkpoint.hpp"
+#include "io/h5_util.hpp"
 #include "io/hdf5_writer.hpp"
 #include "io/log.hpp"
 #include "materials/geometry.hpp"
@@ -438,131 +446,533 @@ void Simulation::initialize() {
   hydro_->prepare();
 }
 
+const char* status_name(Ending e) {
+  switch (e) {
+    case Ending::EndTime:
+      return "completed";
+    case Ending::MaxCycles:
+      return "max_cycles";
+    case Ending::Interrupted:
+      return "interrupted";
+    case Ending::NonPhysical:
+      return "non-physical";
+  }
+  return "?";
+}
+
+const char* ending_text(Ending e) {
+  switch (e) {
+    case Ending::EndTime:
+      return "end time reached";
+    case Ending::MaxCycles:
+      return "max_cycles reached";
+    case Ending::Interrupted:
+      return "interrupted by a signal";
+    case Ending::NonPhysical:
+      return "non-physical state";
+  }
+  return "?";
+}
+
 std::string Simulation::write_dump(double t, long cycle) {
   if (!writer_) return "";
   auto fields = hydro_->output_fields();
   if (const mat::MaterialState* mm = hydro_->materials())
     for (int m = 0; m < mm->nmat(); ++m)
       fields.push_back({"fraction_" + scene_.materials[m].name, Centering::Cell, mm->fraction(m)});
-  return writer_->write(fields, t, static_cast<int>(cycle));
+  const std::string path = writer_->write(fields, t, static_cast<int>(cycle));
+  const std::string file = path.substr(path.rfind('/') + 1);
+  bool known = false;
+  for (auto& d : dumps_)
+    if (d.file == file) {
+      d = {file, t, cycle};
+      known = true;
+    }
+  if (!known) dumps_.push_back({file, t, cycle});
+  return path;
+}
+
+std::vector<OutputField> Simulation::checkpoint_fields() const {
+  const auto& s = hydro_->state();
+  std::vector<OutputField> f = {{"rho", Centering::Cell, s.rho},
+                                {"e", Centering::Cell, s.e},
+                                {"u", Centering::Node, s.u},
+                                {"v", Centering::Node, s.v},
+                                {"w", Centering::Node, s.w}};
+  if (const mat::MaterialState* mm = hydro_->materials())
+    for (int m = 0; m < mm->nmat(); ++m) {
+      const std::string n = std::to_string(m);
+      f.push_back({"alpha_" + n, Centering::Cell, mm->material_field(m, 0)});
+      f.push_back({"rho_" + n, Centering::Cell, mm->material_field(m, 1)});
+      f.push_back({"e_" + n, Centering::Cell, mm->material_field(m, 2)});
+    }
+  for (const OutputField& o : module_state()) f.push_back(o);
+  return f;
+}
+
+// What the strength and burn modules carry from cycle to cycle: the stress deviator and plastic
+// strain, the burn fraction (their other fields are derived, or static like lighting times).
+std::vector<OutputField> Simulation::module_state() const {
+  std::vector<OutputField> f;
+  if (const strength::Strength* st = hydro_->strength()) {
+    const char* names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+    for (int c = 0; c < 6; ++c)
+      f.push_back({std::string("stress_") + names[c], Centering::Cell, st->stress()[c]});
+    f.push_back({"plastic_strain", Centering::Cell, st->plastic_strain()});
+  }
+  if (const burn::Burn* b = hydro_->burn())
+    f.push_back({"burn_fraction", Centering::Cell, b->fraction()});
+  return f;
+}
+
+namespace {
+
+const char* real_name() {
+  return sizeof(Real) == 8 ? "double" : "float";
+}
+
+// Deck keys a restart may change: where and how often output goes, how far the run goes, how
+// the ranks split the mesh, the free text.
+bool restart_may_change(const std::string& key) {
+  return key.rfind("output.", 0) == 0 || key == "output" || key == "time.end" ||
+         key == "time.max_cycles" || key.rfind("mesh.ranks", 0) == 0 || key == "description";
+}
+
+nlohmann::json totals_json(const hydro::Totals& t) {
+  return {{"mass", t.mass},
+          {"internal", t.internal},
+          {"kinetic", t.kinetic},
+          {"momentum", t.momentum},
+          {"material_mass", t.material_mass}};
+}
+
+hydro::Totals totals_from(const nlohmann::json& j) {
+  hydro::Totals t;
+  t.mass = j.at("mass").get<double>();
+  t.internal = j.at("internal").get<double>();
+  t.kinetic = j.at("kinetic").get<double>();
+  t.momentum = j.at("momentum").get<std::array<double, 3>>();
+  t.material_mass = j.at("material_mass").get<std::vector<double>>();
+  return t;
+}
+
+// Restores the per-material content of the owned cells from per-material arrays
+// (nmat, cell index) read from a checkpoint.
+struct RestoreSource {
+  Kokkos::View<Real****, Kokkos::LayoutRight, MemSpace> a, r, e;
+  int nmat;
+  int lo[3], hi[3];
+  KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const {
+    return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
+  }
+  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* al, Real* rh, Real* en) const {
+    int n = 0;
+    for (int m = 0; m < nmat; ++m) {
+      if (!(a(m, i, j, k) > 0)) continue;
+      al[m] = a(m, i, j, k);
+      rh[m] = r(m, i, j, k);
+      en[m] = e(m, i, j, k);
+      ++n;
+    }
+    return n;
+  }
+};
+
+}  // namespace
+
+std::string Simulation::checkpoint_meta() const {
+  nlohmann::json deck = nlohmann::json::object();
+  for (const auto& [k, v] : scene_.deck_values)
+    if (!restart_may_change(k)) deck[k] = v;
+  nlohmann::json dumps = nlohmann::json::array();
+  for (const auto& d : dumps_) dumps.push_back({d.file, d.time, d.cycle});
+  nlohmann::json j = {{"format", 1},
+                      {"version", MINIPAGOSA_VERSION},
+                      {"real", real_name()},
+                      {"scene", scene_.name},
+                      {"deck", deck},
+                      {"time", t_},
+                      {"cycle", cycle_},
+                      {"dt_old", double(dt_old_)},
+                      {"next_dump", next_dump_},
+                      {"start", totals_json(start_)},
+                      {"dumps", dumps},
+                      {"files", files_}};
+  return j.dump();
+}
+
+std::string Simulation::write_checkpoint_now() {
+  const std::string path = checkpoint_path(settings_.output_dir, scene_.output.basename, cycle_);
+  write_checkpoint(*mesh_, path, checkpoint_fields(), checkpoint_meta());
+  // Keep the newest checkpoint_keep complete checkpoints.
+  if (mesh_->rank() == 0) {
+    auto all = list_checkpoints(settings_.output_dir, scene_.output.basename);
+    const int keep = scene_.output.checkpoint_keep;
+    for (int n = 0; n + keep < static_cast<int>(all.size()); ++n)
+      std::remove(all[n].second.c_str());
+  }
+  return path;
+}
+
+void Simulation::restart(const std::string& path) {
+  nlohmann::json meta;
+  const std::string text = read_checkpoint_meta(path, mesh_->comm());
+  try {
+    meta = nlohmann::json::parse(text);
+  } catch (const std::exception& e) {
+    throw RunError("checkpoint " + path + ": unreadable metadata: " + e.what());
+  }
+  const auto str = [&](const char* key) {
+    return meta.contains(key) && meta[key].is_string() ? meta[key].get<std::string>()
+                                                       : std::string("?");
+  };
+  if (str("version") != MINIPAGOSA_VERSION || str("real") != real_name())
+    throw InputError("checkpoint " + path + " was written by minipagosa " + str("version") +
+                     " with Real = " + str("real") + "; this build is minipagosa " +
+                     MINIPAGOSA_VERSION + " with Real = " + real_name() +
+                     ": restart it with the build that wrote it");
+  // The deck: every key that shapes the solution must match.
+  std::map<std::string, std::string> here, there;
+  for (const auto& [k, v] : scene_.deck_values)
+    if (!restart_may_change(k)) here[k] = v;
+  if (meta.contains("deck") && meta["deck"].is_object())
+    for (auto it = meta["deck"].begin(); it != meta["deck"].end(); ++it)
+      there[it.key()] = it.value().is_string() ? it.value().get<std::string>() : it.value().dump();
+  std::string diff;
+  int ndiff = 0;
+  auto note = [&](const std::string& k, const std::string& a, const std::string& b) {
+    if (++ndiff <= 6) diff += "\n  " + k + ": " + a + " in the checkpoint, " + b + " here";
+  };
+  for (const auto& [k, v] : there) {
+    const auto it = here.find(k);
+    if (it == here.end())
+      note(k, "'" + v + "'", "not set");
+    else if (it->second != v)
+      note(k, "'" + v + "'", "'" + it->second + "'");
+  }
+  for (const auto& [k, v] : here)
+    if (!there.count(k)) note(k, "not set", "'" + v + "'");
+  if (ndiff > 0)
+    throw InputError("checkpoint " + path + " was written for another deck (" +
+                     std::to_string(ndiff) + " difference" + (ndiff > 1 ? "s" : "") +
+                     "; only output.*, time.end, time.max_cycles, mesh.ranks and description "
+                     "may change on a restart):" +
+                     diff);
+
+  // Fields: cell and node state straight into the hydro's arrays; per-material state through
+  // the layout's own rebuild, then the cell averages as they were (a mixed cell's average is
+  // whatever the remap left, not necessarily the re-averaged materials).
+  auto& s = hydro_->state();
+  mat::MaterialState* mm = hydro_->materials();
+  Field3 crho = s.rho, ce = s.e;
+  if (mm) {
+    crho = mesh_->new_field("restart_rho", Centering::Cell);
+    ce = mesh_->new_field("restart_e", Centering::Cell);
+  }
+  std::vector<OutputField> fields = {{"rho", Centering::Cell, crho},
+                                     {"e", Centering::Cell, ce},
+                                     {"u", Centering::Node, s.u},
+                                     {"v", Centering::Node, s.v},
+                                     {"w", Centering::Node, s.w}};
+  const int nmat = mm ? mm->nmat() : 0;
+  std::vector<Field3> per;
+  for (int m = 0; m < nmat; ++m)
+    for (const char* q : {"alpha_", "rho_", "e_"}) {
+      per.push_back(mesh_->new_field(std::string("restart_") + q, Centering::Cell));
+      fields.push_back({q + std::to_string(m), Centering::Cell, per.back()});
+    }
+  for (const OutputField& o : module_state()) fields.push_back(o);
+  read_checkpoint_fields(*mesh_, path, fields);
+  if (mm) {
+    const int ex = mesh_->extent(Centering::Cell, 0), ey = mesh_->extent(Centering::Cell, 1),
+              ez = mesh_->extent(Centering::Cell, 2);
+    const int ng = Mesh::ng;
+    const auto end = mesh_->owned_end();
+    using Field4 = Kokkos::View<Real****, Kokkos::LayoutRight, MemSpace>;
+    RestoreSource src{Field4("restart_alpha", nmat, ex, ey, ez),
+                      Field4("restart_rho_m", nmat, ex, ey, ez),
+                      Field4("restart_e_m", nmat, ex, ey, ez),
+                      nmat,
+                      {ng, ng, ng},
+                      {end[0], end[1], end[2]}};
+    for (int m = 0; m < nmat; ++m) {
+      auto a = src.a, r = src.r, e = src.e;
+      auto pa = per[3 * m], pr = per[3 * m + 1], pe = per[3 * m + 2];
+      Kokkos::parallel_for(
+          "restart::materials", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+            a(m, i, j, k) = pa(i, j, k);
+            r(m, i, j, k) = pr(i, j, k);
+            e(m, i, j, k) = pe(i, j, k);
+          });
+    }
+    mm->assign("restart::assign", src);
+    auto rho = s.rho, e = s.e;
+    Kokkos::parallel_for(
+        "restart::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          rho(i, j, k) = crho(i, j, k);
+          e(i, j, k) = ce(i, j, k);
+        });
+  }
+  hydro_->prepare();
+
+  try {
+    t_ = meta.at("time").get<double>();
+    if (burn::Burn* b = hydro_->burn()) b->set_time(t_);
+    cycle_ = meta.at("cycle").get<long>();
+    dt_old_ = Real(meta.at("dt_old").get<double>());
+    next_dump_ = meta.at("next_dump").get<double>();
+    start_ = totals_from(meta.at("start"));
+    files_ = meta.at("files").get<std::vector<std::string>>();
+    dumps_.clear();
+    for (const auto& d : meta.at("dumps"))
+      dumps_.push_back({d.at(0).get<std::string>(), d.at(1).get<double>(), d.at(2).get<long>()});
+  } catch (const std::exception& e) {
+    throw RunError("checkpoint " + path + ": incomplete metadata: " + e.what());
+  }
+  restarted_ = true;
+  restarted_from_ = path;
+}
+
+void Simulation::prepare_output_dir() {
+  const std::string& dir = settings_.output_dir;
+  h5::on_root(mesh_->comm(), [&] {
+    make_dirs(dir);
+    // Temporary files are renamed once complete; any left here were cut short by a crash or a
+    // kill of an earlier run and hold nothing a later run may read.
+    DIR* dp = opendir(dir.c_str());
+    if (!dp) throw RunError("cannot read output directory '" + dir + "': " + std::strerror(errno));
+    std::vector<std::string> stale;
+    while (const dirent* e = readdir(dp)) {
+      const std::string name = e->d_name;
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) stale.push_back(name);
+    }
+    closedir(dp);
+    std::sort(stale.begin(), stale.end());
+    for (const auto& name : stale) {
+      const std::string p = dir + "/" + name;
+      if (std::remove(p.c_str()) != 0)
+        throw RunError("cannot remove stale temporary file " + p + ": " + std::strerror(errno));
+      log_line("  removed stale temporary file " + p + " (left by an earlier run cut short)");
+    }
+  });
 }
 
 RunResult Simulation::run() {
   const bool root = mesh_->rank() == 0;
   const bool write = !settings_.output_dir.empty();
   if (write) {
-    if (root) make_dirs(settings_.output_dir);
-    MPI_Barrier(mesh_->comm());
-    if (scene_.output.write)
+    prepare_output_dir();
+    if (scene_.output.write) {
       writer_ = std::make_unique<Hdf5Writer>(*mesh_, settings_.output_dir, scene_.output.basename);
+      if (restarted_) {
+        std::vector<OutputField> fields = hydro_->output_fields();
+        if (const mat::MaterialState* mm = hydro_->materials())
+          for (int m = 0; m < mm->nmat(); ++m)
+            fields.push_back({"fraction_" + scene_.materials[m].name, Centering::Cell, Field3()});
+        for (const auto& d : dumps_)
+          if (d.cycle <= cycle_) writer_->remember(d.file, d.time, int(d.cycle), fields);
+      }
+    }
   }
+  const double t_end = scene_.time.end;
   RunResult r;
-  r.start = hydro_->totals();
+  r.first_cycle = cycle_;
+  r.restarted_from = restarted_from_;
+  if (!restarted_) {
+    start_ = hydro_->totals();
+    t_ = 0;
+    cycle_ = 0;
+    dt_old_ = 0;
+    next_dump_ = scene_.output.interval > 0 ? scene_.output.interval : t_end;
+    if (write && writer_) files_.push_back(write_dump(t_, cycle_));
+  } else {
+    log_line("  restarted from " + restarted_from_ + " at cycle " + std::to_string(cycle_));
+  }
+  r.start = start_;
   const auto t0 = std::chrono::steady_clock::now();
   auto wall = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
+  const double t_begin = t_;
+  double last_checkpoint = 0;
+  long checkpoint_cycle = -1;
+  const bool checkpoints =
+      write && (scene_.output.checkpoint_cycles > 0 || scene_.output.checkpoint_seconds > 0);
 
-  const double t_end = scene_.time.end;
-  double t = 0, next_dump = scene_.output.interval > 0 ? scene_.output.interval : t_end;
-  Real dt_old = 0;
-  long cycle = 0;
-  if (write && writer_) r.files.push_back(write_dump(t, cycle));
   hydro::Health h;
-  while (t < t_end * (1 - 1e-12) && cycle < scene_.time.max_cycles) {
-    hydro::TimeStep ts = hydro_->time_step(dt_old, t, t_end);
-    if (cycle == 0 && ts.dt > Real(scene_.time.dt_initial)) {
-      ts.dt = Real(scene_.time.dt_initial);
-      ts.limit = "initial";
+  bool interrupted = false;
+  try {
+    while (t_ < t_end * (1 - 1e-12) && cycle_ < scene_.time.max_cycles) {
+      hydro::TimeStep ts = hydro_->time_step(dt_old_, t_, t_end);
+      if (cycle_ == 0 && ts.dt > Real(scene_.time.dt_initial)) {
+        ts.dt = Real(scene_.time.dt_initial);
+        ts.limit = "initial";
+      }
+      h = hydro_->step(ts.dt, cycle_);
+      // the last step lands on the end time exactly (Real(t_end - t) is rounded in float builds)
+      t_ = ts.limit == "end" ? t_end : t_ + double(ts.dt);
+      ++cycle_;
+      dt_old_ = ts.dt;
+      if (!h.ok) break;
+      const bool at_end = t_ >= t_end * (1 - 1e-12);
+      if (!settings_.quiet && root && (cycle_ % scene_.output.log_every == 0 || at_end)) {
+        const double w = wall(), done = (t_ - t_begin) / (t_end - t_begin);
+        log_cycle(cycle_, t_, double(ts.dt), ts.limit, ts.cell, w, t_ / t_end,
+                  done > 0 ? w * (1 - done) / done : -1);
+      }
+      if (write && writer_ && scene_.output.interval > 0 && t_ >= next_dump_ * (1 - 1e-12) &&
+          !at_end) {
+        files_.push_back(write_dump(t_, cycle_));
+        next_dump_ += scene_.output.interval;
+      }
+      // Every rank learns whether any rank saw a stop signal or reached the checkpoint wall
+      // time, so all stop or checkpoint after the same cycle.
+      int flags = 0;
+      if (settings_.watch_signals && signals::requested()) flags |= 1;
+      if (checkpoints && scene_.output.checkpoint_seconds > 0 &&
+          wall() - last_checkpoint >= scene_.output.checkpoint_seconds)
+        flags |= 2;
+      MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &flags, 1, MPI_INT, MPI_BOR, mesh_->comm()));
+      if (flags & 1) {
+        interrupted = !at_end;
+        break;
+      }
+      if (checkpoints && !at_end &&
+          ((scene_.output.checkpoint_cycles > 0 && cycle_ % scene_.output.checkpoint_cycles == 0) ||
+           (flags & 2))) {
+        r.checkpoints.push_back(write_checkpoint_now());
+        checkpoint_cycle = cycle_;
+        last_checkpoint = wall();
+        if (!settings_.quiet) log_line("  checkpoint " + r.checkpoints.back());
+      }
     }
-    h = hydro_->step(ts.dt, cycle);
-    // the last step lands on the end time exactly (Real(t_end - t) is rounded in float builds)
-    t = ts.limit == "end" ? t_end : t + double(ts.dt);
-    ++cycle;
-    dt_old = ts.dt;
-    if (!h.ok) break;
-    if (!settings_.quiet && root &&
-        (cycle % scene_.output.log_every == 0 || t >= t_end * (1 - 1e-12)))
-      log_cycle(cycle, t, double(ts.dt), ts.limit, ts.cell, wall(), t / t_end);
-    if (write && writer_ && scene_.output.interval > 0 && t >= next_dump * (1 - 1e-12) &&
-        t < t_end * (1 - 1e-12)) {
-      r.files.push_back(write_dump(t, cycle));
-      next_dump += scene_.output.interval;
-    }
+  } catch (const CollectiveError& e) {
+    output_failed(r, e.what());
   }
-  r.cycles = cycle;
-  r.time = t;
-  r.wall = wall();
+  r.cycles = cycle_;
+  r.time = t_;
   r.end = hydro_->totals();
   r.health = h;
-  r.ok = h.ok;
-  if (write && writer_) r.files.push_back(write_dump(t, cycle));
+  const double tot[] = {r.end.mass,        r.end.internal,    r.end.kinetic,
+                        r.end.momentum[0], r.end.momentum[1], r.end.momentum[2]};
+  bool finite = true;
+  for (double v : tot) finite = finite && std::isfinite(v);
+  if (h.ok && !finite) {
+    r.health.ok = false;
+    r.health.what = "non-finite totals (mass, energy or momentum)";
+    r.health.cell = {-1, -1, -1};
+  }
+  r.ok = r.health.ok;
+  r.ending = !r.ok                       ? Ending::NonPhysical
+             : interrupted               ? Ending::Interrupted
+             : t_ >= t_end * (1 - 1e-12) ? Ending::EndTime
+                                         : Ending::MaxCycles;
+  // A run that stops before its end time leaves a checkpoint to continue from.
+  try {
+    if (write && r.ok && (r.checkpoints.empty() || checkpoint_cycle != cycle_) &&
+        (r.ending == Ending::Interrupted || (r.ending == Ending::MaxCycles && checkpoints)))
+      r.checkpoints.push_back(write_checkpoint_now());
+    if (write && writer_) files_.push_back(write_dump(t_, cycle_));
+  } catch (const CollectiveError& e) {
+    output_failed(r, e.what());
+  }
+  r.files = files_;
+  r.wall = wall();
   if (write) write_summary(r);
   return r;
 }
 
+void Simulation::output_failed(RunResult& r, const std::string& what) {
+  r.cycles = cycle_;
+  r.time = t_;
+  r.end = hydro_->totals();
+  r.files = files_;
+  r.output_error = what;
+  std::string note = "; nothing else was written";
+  try {
+    write_summary(r);
+    note = "; summary.json records the failure";
+  } catch (const std::exception&) {
+  }
+  throw CollectiveError(what + note);
+}
+
 void Simulation::write_summary(const RunResult& r) const {
-  if (mesh_->rank() != 0) return;
-  const double cc = double(mesh_->global_cell_count()) * double(r.cycles);
-  // JSON has no NaN or infinity: a run that went non-physical writes them as null
-  const auto N = [](double x) { return json_number(x); };
-  std::ostringstream js;
-  js.precision(17);
-  auto totals = [&](const hydro::Totals& t) {
-    std::ostringstream o;
-    o.precision(17);
-    o << "{\"mass\": " << N(t.mass) << ", \"momentum\": [" << N(t.momentum[0]) << ", "
-      << N(t.momentum[1]) << ", " << N(t.momentum[2]) << "], \"internal_energy\": " << N(t.internal)
-      << ", \"kinetic_energy\": " << N(t.kinetic) << ", \"total_energy\": " << N(t.total());
-    if (!t.material_mass.empty()) {
-      o << ", \"material_mass\": {";
-      for (std::size_t m = 0; m < t.material_mass.size(); ++m)
-        o << (m ? ", " : "") << "\"" << json_escape(scene_.materials[m].name)
-          << "\": " << N(t.material_mass[m]);
-      o << "}";
-    }
-    o << "}";
-    return o.str();
+  const std::string path = settings_.output_dir + "/summary.json";
+  const std::string text = summary_json(r);
+  h5::on_root(mesh_->comm(), [&] { write_text_atomically(path, text); });
+}
+
+std::string Simulation::summary_json(const RunResult& r) const {
+  // Non-finite numbers are not JSON: each becomes null and its key is listed in "non_finite".
+  std::vector<std::string> non_finite;
+  auto num = [&](double v, const std::string& key) -> nlohmann::ordered_json {
+    if (std::isfinite(v)) return v;
+    non_finite.push_back(key);
+    return nullptr;
   };
-  js << "{\n  \"scene\": \"" << scene_.name << "\",\n  \"deck\": \"" << json_escape(scene_.file)
-     << "\",\n  \"version\": \"" << MINIPAGOSA_VERSION << "\",\n  \"status\": \""
-     << (r.ok ? "completed" : "stopped: " + json_escape(r.health.what)) << "\",\n"
-     << "  \"ranks\": " << mesh_->nranks() << ",\n  \"decomposition\": [" << mesh_->dims()[0]
-     << ", " << mesh_->dims()[1] << ", " << mesh_->dims()[2] << "],\n"
-     << "  \"kokkos_execution_space\": \"" << ExecSpace::name() << "\",\n"
-     << "  \"threads_per_rank\": " << ExecSpace().concurrency() << ",\n"
-     << "  \"real\": \"" << (sizeof(Real) == 8 ? "double" : "float") << "\",\n"
-     << "  \"cells\": [" << mesh_->global_cells(0) << ", " << mesh_->global_cells(1) << ", "
-     << mesh_->global_cells(2) << "],\n  \"cycles\": " << r.cycles << ",\n  \"time\": " << N(r.time)
-     << ",\n  \"wall_seconds\": " << N(r.wall)
-     << ",\n  \"cell_cycles_per_second\": " << N(r.wall > 0 ? cc / r.wall : 0)
-     << ",\n  \"modules\": [";
-  const auto mods = modules();
-  for (std::size_t i = 0; i < mods.size(); ++i)
-    js << (i ? ", " : "") << "\"" << json_escape(mods[i]) << "\"";
+  auto totals = [&](const hydro::Totals& t, const std::string& at) {
+    nlohmann::ordered_json o;
+    o["mass"] = num(t.mass, at + ".mass");
+    o["momentum"] = {num(t.momentum[0], at + ".momentum.0"), num(t.momentum[1], at + ".momentum.1"),
+                     num(t.momentum[2], at + ".momentum.2")};
+    o["internal_energy"] = num(t.internal, at + ".internal_energy");
+    o["kinetic_energy"] = num(t.kinetic, at + ".kinetic_energy");
+    o["total_energy"] = num(t.total(), at + ".total_energy");
+    if (!t.material_mass.empty()) {
+      nlohmann::ordered_json mm = nlohmann::ordered_json::object();
+      for (std::size_t m = 0; m < t.material_mass.size(); ++m)
+        mm[scene_.materials[m].name] =
+            num(t.material_mass[m], at + ".material_mass." + scene_.materials[m].name);
+      o["material_mass"] = mm;
+    }
+    return o;
+  };
+  const double cc = double(mesh_->global_cell_count()) * double(r.cycles - r.first_cycle);
+  nlohmann::ordered_json js;
+  js["scene"] = scene_.name;
+  js["deck"] = scene_.file;
+  js["version"] = MINIPAGOSA_VERSION;
+  js["status"] = r.output_error.empty() ? status_name(r.ending) : "output-failed";
+  js["ended_by"] = r.output_error.empty() ? ending_text(r.ending) : "output failed";
+  if (!r.output_error.empty()) js["output_error"] = r.output_error;
+  js["ranks"] = mesh_->nranks();
+  js["decomposition"] = mesh_->dims();
+  js["kokkos_execution_space"] = ExecSpace::name();
+  js["threads_per_rank"] = ExecSpace().concurrency();
+  js["real"] = real_name();
+  js["cells"] = {mesh_->global_cells(0), mesh_->global_cells(1), mesh_->global_cells(2)};
+  js["cycles"] = r.cycles;
+  js["time"] = num(r.time, "time");
+  js["end_time"] = scene_.time.end;
+  js["wall_seconds"] = r.wall;
+  js["cell_cycles_per_second"] = r.wall > 0 ? cc / r.wall : 0.0;
+  js["modules"] = modules();
+  js["start"] = totals(r.start, "start");
+  js["end"] = totals(r.end, "end");
   const double dm = r.end.mass - r.start.mass;
   const double de = r.end.total() - r.start.total();
-  js << "],\n  \"start\": " << totals(r.start) << ",\n  \"end\": " << totals(r.end)
-     << ",\n  \"mass_change_relative\": " << N(r.start.mass != 0 ? dm / r.start.mass : 0)
-     << ",\n  \"total_energy_change_relative\": "
-     << N(r.start.total() != 0 ? de / r.start.total() : 0) << ",\n  \"files\": [";
-  for (std::size_t i = 0; i < r.files.size(); ++i)
-    js << (i ? ", " : "") << "\"" << json_escape(r.files[i]) << "\"";
-  js << "]";
-  if (!r.ok)
-    js << ",\n  \"failure\": {\"what\": \"" << json_escape(r.health.what) << "\", \"cell\": ["
-       << r.health.cell[0] << ", " << r.health.cell[1] << ", " << r.health.cell[2]
-       << "], \"cycle\": " << r.cycles << ", \"density\": " << N(r.health.rho)
-       << ", \"energy\": " << N(r.health.e) << ", \"pressure\": " << N(r.health.p) << "}";
-  js << "\n}\n";
-  const std::string path = settings_.output_dir + "/summary.json";
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    out << js.str();
-    if (!out) throw RunError("cannot write " + tmp);
+  js["mass_change_relative"] =
+      num(r.start.mass != 0 ? dm / r.start.mass : 0, "mass_change_relative");
+  js["total_energy_change_relative"] =
+      num(r.start.total() != 0 ? de / r.start.total() : 0, "total_energy_change_relative");
+  js["files"] = r.files;
+  js["checkpoints"] = r.checkpoints;
+  if (!r.restarted_from.empty()) {
+    js["restarted_from"] = r.restarted_from;
+    js["restart_cycle"] = r.first_cycle;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) throw RunError("cannot rename " + tmp);
+  if (!r.ok) {
+    const auto& h = r.health;
+    js["failure"] = {{"what", h.what},
+                     {"cell", h.cell},
+                     {"cycle", r.cycles},
+                     {"density", num(h.rho, "failure.density")},
+                     {"energy", num(h.e, "failure.energy")},
+                     {"pressure", num(h.p, "failure.pressure")}};
+  }
+  js["non_finite"] = non_finite;
+  return js.dump(2) + "\n";
 }
 
 }  // namespace mp

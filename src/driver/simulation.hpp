@@ -14,16 +14,30 @@ namespace mp {
 struct RunSettings {
   std::string output_dir;  // where dumps and the summary go; empty: nothing is written
   bool quiet = false;      // no per-cycle log lines
+  // Stop after the current cycle when a SIGTERM/SIGINT arrived (signals.hpp); all ranks agree.
+  bool watch_signals = false;
 };
 
+// What ended a run.
+enum class Ending { EndTime, MaxCycles, Interrupted, NonPhysical };
+// "completed", "max_cycles", "interrupted", "non-physical" (summary.json "status")
+const char* status_name(Ending e);
+// "end time reached", ... (closing line, summary.json "ended_by")
+const char* ending_text(Ending e);
+
 struct RunResult {
-  bool ok = true;
+  Ending ending = Ending::EndTime;
+  bool ok = true;  // false: non-physical (a cell, or non-finite totals)
   long cycles = 0;
   double time = 0;
   double wall = 0;
   hydro::Totals start, end;
   hydro::Health health;
   std::vector<std::string> files;
+  std::vector<std::string> checkpoints;  // written by this run
+  std::string restarted_from;            // checkpoint path, or empty
+  long first_cycle = 0;                  // cycle this process started at (restart: > 0)
+  std::string output_error;              // a dump or checkpoint that could not be written
 };
 
 class Simulation {
@@ -34,8 +48,23 @@ class Simulation {
   // Paints the regions onto the mesh (cell centres decide; nodes take the velocity of the
   // region holding them) and derives pressure, sound speed and viscosity.
   void initialize();
-  // Runs to the end time; writes dumps, the XDMF series and summary.json when asked to.
+  // Instead of initialize(): continues from a checkpoint (io/checkpoint.hpp). Throws
+  // InputError when the checkpoint was written by another build or another deck (naming what
+  // differs), RunError when it cannot be read.
+  void restart(const std::string& path);
+  // Runs to the end time, max_cycles, a non-physical state or a stop signal; writes dumps,
+  // the XDMF series, checkpoints and summary.json when asked to.
   RunResult run();
+  // Writes a checkpoint of the current state now (collective); returns its path.
+  std::string write_checkpoint_now();
+  // The fields a checkpoint holds (cell rho, e; node u, v, w; per material alpha, rho, e).
+  std::vector<OutputField> checkpoint_fields() const;
+  std::vector<OutputField> module_state() const;
+  // The text of summary.json for a result (always valid JSON: a non-finite number is null and
+  // its key is listed under "non_finite").
+  std::string summary_json(const RunResult& r) const;
+  double time() const { return t_; }
+  long cycle() const { return cycle_; }
 
   const Mesh& mesh() const { return *mesh_; }
   hydro::Hydro& hydro() { return *hydro_; }
@@ -45,6 +74,11 @@ class Simulation {
  private:
   std::string write_dump(double t, long cycle);
   void write_summary(const RunResult& r) const;
+  std::string checkpoint_meta() const;
+  // A dump or checkpoint failed on every rank: record it in summary.json (if that can still be
+  // written) and throw CollectiveError with the reason.
+  [[noreturn]] void output_failed(RunResult& r, const std::string& what);
+  void prepare_output_dir();
 
   Scene scene_;
   RunSettings settings_;
@@ -52,6 +86,20 @@ class Simulation {
   std::unique_ptr<Halo> halo_;
   std::unique_ptr<hydro::Hydro> hydro_;
   std::unique_ptr<Hdf5Writer> writer_;
+  // The run's clock and counters: what a checkpoint saves beside the fields.
+  double t_ = 0, next_dump_ = 0, wall_before_ = 0;
+  long cycle_ = 0;
+  Real dt_old_ = 0;
+  hydro::Totals start_;
+  bool restarted_ = false;
+  std::string restarted_from_;
+  std::vector<std::string> files_;
+  struct DumpRecord {
+    std::string file;
+    double time;
+    long cycle;
+  };
+  std::vector<DumpRecord> dumps_;
 };
 
 }  // namespace mp

@@ -10,90 +10,16 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "io/h5_util.hpp"
 
 namespace mp {
 
 namespace {
 
-// Owns one hid_t and closes it with the matching H5?close, so an exception never leaks it.
-class H5Handle {
- public:
-  using Closer = herr_t (*)(hid_t);
-  H5Handle() = default;
-  ~H5Handle() {
-    if (id_ >= 0) closer_(id_);  // best effort: an error is already in flight or was reported
-  }
-  H5Handle(const H5Handle&) = delete;
-  H5Handle& operator=(const H5Handle&) = delete;
-
-  // Takes ownership of id when it is valid; returns id so HDF5_CHECK sees the raw result.
-  hid_t reset(hid_t id, Closer closer) {
-    if (id_ >= 0) closer_(id_);
-    id_ = id >= 0 ? id : -1;
-    closer_ = closer;
-    return id;
-  }
-  // Closes now and returns the closer's status, for the handles whose close can fail (files).
-  herr_t close() {
-    if (id_ < 0) return 0;
-    const hid_t id = id_;
-    id_ = -1;
-    return closer_(id);
-  }
-  hid_t get() const { return id_; }
-
- private:
-  hid_t id_ = -1;
-  Closer closer_ = nullptr;
-};
-
-hid_t native_real_type() {
-  return std::is_same<Real, double>::value ? H5T_NATIVE_DOUBLE : H5T_NATIVE_FLOAT;
-}
-
-// Writes a small attribute (scalar when n == 0, else a 1-D array of n) on the object `loc`.
-void write_attribute(hid_t loc, const char* name, hid_t type, hsize_t n, const void* data) {
-  H5Handle space, attr;
-  if (n == 0) {
-    HDF5_CHECK(space.reset(H5Screate(H5S_SCALAR), H5Sclose));
-  } else {
-    HDF5_CHECK(space.reset(H5Screate_simple(1, &n, nullptr), H5Sclose));
-  }
-  HDF5_CHECK(
-      attr.reset(H5Acreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose));
-  HDF5_CHECK(H5Awrite(attr.get(), type, data));
-  HDF5_CHECK(attr.close());
-  HDF5_CHECK(space.close());
-}
-
-// Rank 0 does `work` (which reports failure as a non-empty message), the others learn the
-// outcome, and every rank throws the same RunError if it failed: no rank is left waiting.
-template <class F>
-void on_root(MPI_Comm comm, F&& work) {
-  int rank = 0;
-  MPI_CHECK(MPI_Comm_rank(comm, &rank));
-  std::string msg;
-  if (rank == 0) {
-    try {
-      work();
-    } catch (const std::exception& e) {
-      msg = e.what();
-      if (msg.empty()) msg = "unknown error";
-    }
-  }
-  int len = static_cast<int>(msg.size());
-  MPI_CHECK(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
-  if (len > 0) {
-    msg.resize(static_cast<size_t>(len));
-    MPI_CHECK(MPI_Bcast(&msg[0], len, MPI_CHAR, 0, comm));
-    throw RunError(msg);
-  }
-}
-
-void rename_or_throw(const std::string& from, const std::string& to) {
-  if (std::rename(from.c_str(), to.c_str()) != 0)
-    throw RunError("cannot rename " + from + " to " + to + ": " + std::strerror(errno));
-}
+using h5::Handle;
+using h5::on_root;
+using h5::rename_or_throw;
+using h5::write_attribute;
 
 std::string dims_string(const std::array<int, 3>& zyx) {
   std::ostringstream os;
@@ -153,80 +79,47 @@ std::string Hdf5Writer::write(const std::vector<OutputField>& fields, double tim
         throw RunError("hdf5 output: field '" + f.name + "' does not match the mesh block");
   }
 
-  {
-    H5Handle fapl, file, dxpl;
-    HDF5_CHECK(fapl.reset(H5Pcreate(H5P_FILE_ACCESS), H5Pclose));
-    HDF5_CHECK(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL));
-    HDF5_CHECK(
-        file.reset(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose));
-    HDF5_CHECK(dxpl.reset(H5Pcreate(H5P_DATASET_XFER), H5Pclose));
-    HDF5_CHECK(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE));
+  try {
+    h5::on_all(comm, [&] {
+      Handle fapl, file, dxpl;
+      HDF5_CHECK(fapl.reset(H5Pcreate(H5P_FILE_ACCESS), H5Pclose));
+      HDF5_CHECK(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL));
+      HDF5_CHECK(
+          file.reset(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose));
+      HDF5_CHECK(dxpl.reset(H5Pcreate(H5P_DATASET_XFER), H5Pclose));
+      HDF5_CHECK(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE));
 
-    // Root-group attributes: every rank passes the same values (metadata writes are collective).
-    write_attribute(file.get(), "time", H5T_NATIVE_DOUBLE, 0, &time);
-    write_attribute(file.get(), "cycle", H5T_NATIVE_INT, 0, &cycle);
-    const MeshSpec& spec = mesh_.spec();
-    double origin[3], spacing[3];
-    int cells[3];
-    for (int d = 0; d < 3; ++d) {
-      origin[d] = spec.lo[d];
-      spacing[d] = (spec.hi[d] - spec.lo[d]) / spec.cells[d];
-      cells[d] = spec.cells[d];
-    }
-    write_attribute(file.get(), "origin", H5T_NATIVE_DOUBLE, 3, origin);
-    write_attribute(file.get(), "spacing", H5T_NATIVE_DOUBLE, 3, spacing);
-    write_attribute(file.get(), "cells", H5T_NATIVE_INT, 3, cells);
-
-    const hid_t type = native_real_type();
-    for (const auto& f : fields) {
-      const int extra = f.centering == Centering::Node ? 1 : 0;
-      // Per axis d (x, y, z): first local index written, count written, global offset.
-      int first[3], count[3];
-      hsize_t gdims[3], start[3], block[3];  // z y x order
+      // Root-group attributes: every rank passes the same values (metadata writes are collective).
+      write_attribute(file.get(), "time", H5T_NATIVE_DOUBLE, 0, &time);
+      write_attribute(file.get(), "cycle", H5T_NATIVE_INT, 0, &cycle);
+      const MeshSpec& spec = mesh_.spec();
+      double origin[3], spacing[3];
+      int cells[3];
       for (int d = 0; d < 3; ++d) {
-        first[d] = Mesh::ng;
-        const bool high_end = mesh_.coords()[d] == mesh_.dims()[d] - 1;
-        // Shared face nodes are written by the lower rank only; the last global node by the
-        // rank at the high end.
-        count[d] = mesh_.owned_cells(d) + (extra && high_end ? 1 : 0);
-        gdims[2 - d] = static_cast<hsize_t>(mesh_.global_cells(d) + extra);
-        start[2 - d] = static_cast<hsize_t>(mesh_.offset(d));
-        block[2 - d] = static_cast<hsize_t>(count[d]);
+        origin[d] = spec.lo[d];
+        spacing[d] = (spec.hi[d] - spec.lo[d]) / spec.cells[d];
+        cells[d] = spec.cells[d];
       }
+      write_attribute(file.get(), "origin", H5T_NATIVE_DOUBLE, 3, origin);
+      write_attribute(file.get(), "spacing", H5T_NATIVE_DOUBLE, 3, spacing);
+      write_attribute(file.get(), "cells", H5T_NATIVE_INT, 3, cells);
 
-      // Owned block to host, (k, j, i) with i fastest.
-      auto host = Kokkos::create_mirror_view(f.view);
-      Kokkos::deep_copy(host, f.view);
-      std::vector<Real> buf(static_cast<size_t>(count[0]) * count[1] * count[2]);
-      size_t n = 0;
-      for (int k = first[2]; k < first[2] + count[2]; ++k)
-        for (int j = first[1]; j < first[1] + count[1]; ++j)
-          for (int i = first[0]; i < first[0] + count[0]; ++i) buf[n++] = host(i, j, k);
-
-      H5Handle fspace, mspace, dset;
-      HDF5_CHECK(fspace.reset(H5Screate_simple(3, gdims, nullptr), H5Sclose));
-      HDF5_CHECK(dset.reset(H5Dcreate2(file.get(), f.name.c_str(), type, fspace.get(), H5P_DEFAULT,
-                                       H5P_DEFAULT, H5P_DEFAULT),
-                            H5Dclose));
-      HDF5_CHECK(mspace.reset(H5Screate_simple(3, block, nullptr), H5Sclose));
-      if (buf.empty()) {
-        HDF5_CHECK(H5Sselect_none(fspace.get()));
-        HDF5_CHECK(H5Sselect_none(mspace.get()));
-      } else {
-        HDF5_CHECK(
-            H5Sselect_hyperslab(fspace.get(), H5S_SELECT_SET, start, nullptr, block, nullptr));
-      }
-      HDF5_CHECK(H5Dwrite(dset.get(), type, mspace.get(), fspace.get(), dxpl.get(), buf.data()));
-      HDF5_CHECK(dset.close());
-    }
-    HDF5_CHECK(dxpl.close());
-    HDF5_CHECK(file.close());
-    HDF5_CHECK(fapl.close());
+      for (const auto& f : fields)
+        h5::write_block(file.get(), dxpl.get(), mesh_, f.name, f.centering, f.view);
+      HDF5_CHECK(dxpl.close());
+      HDF5_CHECK(file.close());
+      HDF5_CHECK(fapl.close());
+    });
+    // Every rank has closed the file; only then does it get its final name.
+    MPI_CHECK(MPI_Barrier(comm));
+    on_root(comm, [&] { rename_or_throw(tmp, path); });
+  } catch (const std::exception& e) {
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0) std::remove(tmp.c_str());
+    throw CollectiveError("cannot write dump " + path + ": " + e.what() + disk_space_note(path) +
+                          " (partial file removed; earlier dumps are intact)");
   }
-
-  // Every rank has closed the file; only then does it get its final name.
-  MPI_CHECK(MPI_Barrier(comm));
-  on_root(comm, [&] { rename_or_throw(tmp, path); });
 
   Dump dump{name, time, cycle, {}};
   for (const auto& f : fields) dump.fields.emplace_back(f.name, f.centering);
@@ -241,9 +134,15 @@ std::string Hdf5Writer::write(const std::vector<OutputField>& fields, double tim
   return path;
 }
 
+void Hdf5Writer::remember(const std::string& file, double time, int cycle,
+                          const std::vector<OutputField>& fields) {
+  Dump dump{file, time, cycle, {}};
+  for (const auto& f : fields) dump.fields.emplace_back(f.name, f.centering);
+  dumps_.push_back(std::move(dump));
+}
+
 void Hdf5Writer::write_xdmf() const {
   const std::string path = dir_ + "/" + basename_ + ".xmf";
-  const std::string tmp = path + ".tmp";
   const MeshSpec& spec = mesh_.spec();
   const std::array<int, 3> nodes{{spec.cells[2] + 1, spec.cells[1] + 1, spec.cells[0] + 1}};
   const std::array<int, 3> cells{{spec.cells[2], spec.cells[1], spec.cells[0]}};
@@ -288,19 +187,13 @@ void Hdf5Writer::write_xdmf() const {
      << "  </Domain>\n"
      << "</Xdmf>\n";
 
-  {
-    std::ofstream out(tmp, std::ios::trunc);
-    out << os.str();
-    out.close();
-    if (!out) throw RunError("cannot write " + tmp);
-  }
-  rename_or_throw(tmp, path);
+  write_text_atomically(path, os.str());
 }
 
 std::vector<double> read_dataset(const std::string& file, const std::string& name,
                                  std::array<hsize_t, 3>* dims) {
   HDF5_CHECK(H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr));
-  H5Handle f, dset, space;
+  Handle f, dset, space;
   HDF5_CHECK(f.reset(H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose));
   HDF5_CHECK(dset.reset(H5Dopen2(f.get(), name.c_str(), H5P_DEFAULT), H5Dclose));
   HDF5_CHECK(space.reset(H5Dget_space(dset.get()), H5Sclose));

@@ -34,6 +34,9 @@ class Hdf5Writer {
   // it, and rewrites <dir>/<basename>.xmf (tmp + rename) listing every dump written so far by this
   // writer. Returns the final path of the .h5 file. Throws RunError on any HDF5, MPI or file error.
   std::string write(const std::vector<OutputField>& fields, double time, int cycle);
+  // Lists a dump an earlier process wrote (a restart) in the XDMF series of later writes.
+  void remember(const std::string& file, double time, int cycle,
+                const std::vector<OutputField>& fields);
 
  private:
   struct Dump {

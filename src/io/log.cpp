@@ -2,7 +2,6 @@
 
 #include <mpi.h>
 
-#include <cmath>
 #include <cstdio>
 
 namespace mp {
@@ -15,46 +14,12 @@ void log_line(const std::string& text) {
 }
 
 void log_cycle(long cycle, double t, double dt, const std::string& limit,
-               const std::array<int, 3>& cell, double wall, double progress) {
-  std::printf("cycle %7ld  t %.6e  dt %.4e (%s at %d,%d,%d)  wall %9.3f s  %5.1f%%\n", cycle, t, dt,
-              limit.c_str(), cell[0], cell[1], cell[2], wall, 100.0 * progress);
+               const std::array<int, 3>& cell, double wall, double progress, double eta) {
+  char left[32] = "";
+  if (eta >= 0) std::snprintf(left, sizeof left, "  ETA %.0f s", eta);
+  std::printf("cycle %7ld  t %.6e  dt %.4e (%s at %d,%d,%d)  wall %9.3f s  %5.1f%%%s\n", cycle, t,
+              dt, limit.c_str(), cell[0], cell[1], cell[2], wall, 100.0 * progress, left);
   std::fflush(stdout);
-}
-
-std::string json_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        o += "\\\"";
-        break;
-      case '\\':
-        o += "\\\\";
-        break;
-      case '\n':
-        o += "\\n";
-        break;
-      case '\t':
-        o += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          o += buf;
-        } else {
-          o += c;
-        }
-    }
-  }
-  return o;
-}
-
-std::string json_number(double x) {
-  if (!std::isfinite(x)) return "null";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
 }
 
 }  // namespace mp

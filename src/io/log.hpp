@@ -7,10 +7,6 @@ namespace mp {
 
 void log_line(const std::string& text);  // rank 0 prints, others stay silent
 void log_cycle(long cycle, double t, double dt, const std::string& limit,
-               const std::array<int, 3>& cell, double wall, double progress);
-std::string json_escape(const std::string& s);
-// A number as JSON text: 17 significant digits, or null when it is NaN or infinite (JSON has
-// neither).
-std::string json_number(double x);
+               const std::array<int, 3>& cell, double wall, double progress, double eta = -1);
 
 }  // namespace mp

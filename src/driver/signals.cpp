@@ -1,0 +1,43 @@
+#include "driver/signals.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstring>
+
+namespace mp::signals {
+
+namespace {
+volatile sig_atomic_t g_signal = 0;
+
+void handler(int sig) {
+  if (g_signal != 0) {
+    // only async-signal-safe calls here
+    const char msg[] = "minipagosa: second signal: stopping at once\n";
+    const ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+    _exit(128 + sig);
+  }
+  g_signal = sig;
+}
+}  // namespace
+
+void install() {
+  struct sigaction sa;
+  std::memset(&sa, 0, sizeof sa);
+  sa.sa_handler = handler;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART;
+  sigaction(SIGTERM, &sa, nullptr);
+  sigaction(SIGINT, &sa, nullptr);
+}
+
+int requested() {
+  return g_signal;
+}
+
+void reset() {
+  g_signal = 0;
+}
+
+}  // namespace mp::signals

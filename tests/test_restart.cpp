@@ -1,0 +1,279 @@
+// Restart: a run checkpointed part way and continued from the checkpoint ends with every field
+// bitwise equal to the straight run (maximum difference exactly 0: the restart reads back the
+// exact bits and recomputes the derived fields with the same kernels, so round-off allows no
+// difference), on the same rank count and from a checkpoint written by half the ranks (1 -> 2
+// on 2 ranks, 2 -> 4 on 4), in the dense and the compact layout, on the three-material triple
+// point. A checkpoint from another deck or another build is refused naming what differs.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/checkpoint.hpp"
+#include "io/h5_util.hpp"
+#include "support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+using namespace mp;
+
+int world_rank() {
+  int r = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+int world_size() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+// A temporary directory every rank knows (made by rank 0), removed at the end.
+struct SharedDir {
+  std::string path;
+  SharedDir() {
+    char buf[256] = {0};
+    if (world_rank() == 0) {
+      std::string name = (fs::temp_directory_path() / "minipagosa_restart_XXXXXX").string();
+      if (mkdtemp(name.data())) std::snprintf(buf, sizeof buf, "%s", name.c_str());
+    }
+    MPI_Bcast(buf, sizeof buf, MPI_CHAR, 0, MPI_COMM_WORLD);
+    path = buf;
+  }
+  ~SharedDir() {
+    MPI_Barrier(MPI_COMM_WORLD);
+    std::error_code ec;
+    if (world_rank() == 0) fs::remove_all(path, ec);
+  }
+};
+
+// The triple point, small: 32 x 12 x 4 cells (at least 2 cells per rank per axis on 4 ranks),
+// to t = 0.7 (the shock has crossed into both gases and mixed cells line both interfaces).
+std::vector<std::string> deck(const std::string& layout) {
+  return {"mesh.cells=[32,12,4]", "time.end=0.7", "numerics.layout=" + layout,
+          "output.write=false"};
+}
+
+using Snapshot = std::vector<std::pair<std::string, std::vector<double>>>;
+
+// Every field a cycle reads or derives, gathered globally.
+Snapshot snapshot(Simulation& sim) {
+  Snapshot out;
+  for (const auto& f : sim.checkpoint_fields())
+    out.emplace_back(f.name, test::gather(sim.mesh(), f.view, f.centering));
+  const auto& s = sim.hydro().state();
+  for (const auto& [name, view] :
+       {std::pair<const char*, Field3>{"p", s.p}, {"c", s.c}, {"q", s.q}})
+    out.emplace_back(name, test::gather(sim.mesh(), view, Centering::Cell));
+  return out;
+}
+
+Snapshot straight_run(const std::string& layout) {
+  auto r = test::run_scene(test::load_scene("triple_point.yaml", deck(layout)));
+  EXPECT_TRUE(r.result.ok);
+  EXPECT_EQ(r.result.ending, Ending::EndTime);
+  Snapshot s = snapshot(*r.sim);
+  // the scene must exercise mixed cells, or the per-material restart goes untested
+  long mixed = 0;
+  for (const auto& [name, values] : s)
+    if (name.rfind("alpha_", 0) == 0)
+      for (double a : values) mixed += a > 0 && a < 1 ? 1 : 0;
+  if (world_rank() == 0)
+    std::printf("  %s: %ld partial volume fractions at the end\n", layout.c_str(), mixed);
+  EXPECT_GT(mixed, 0);
+  return s;
+}
+
+// Runs the first `cycles` cycles on `comm` (the ranks not in it wait), writing a checkpoint in
+// `dir`; returns its path on every rank of the world.
+std::string run_to_checkpoint(const std::string& layout, long cycles, MPI_Comm comm,
+                              const std::string& dir) {
+  std::string path;
+  if (comm != MPI_COMM_NULL) {
+    auto d = deck(layout);
+    d.push_back("time.max_cycles=" + std::to_string(cycles));
+    d.push_back("output.checkpoint_every={cycles: " + std::to_string(cycles) + "}");
+    RunSettings settings;
+    settings.quiet = true;
+    settings.output_dir = dir;
+    Simulation sim(test::load_scene("triple_point.yaml", d), comm, settings);
+    sim.initialize();
+    const RunResult r = sim.run();
+    EXPECT_EQ(r.ending, Ending::MaxCycles);
+    EXPECT_EQ(r.cycles, cycles);
+    EXPECT_EQ(r.checkpoints.size(), 1u) << "one checkpoint at the stop, not two";
+    if (!r.checkpoints.empty()) path = r.checkpoints.back();
+  }
+  char buf[512] = {0};
+  std::snprintf(buf, sizeof buf, "%s", path.c_str());
+  MPI_Bcast(buf, sizeof buf, MPI_CHAR, 0, MPI_COMM_WORLD);
+  return buf;
+}
+
+Snapshot restarted_run(const std::string& layout, const std::string& checkpoint, long from) {
+  RunSettings settings;
+  settings.quiet = true;
+  Simulation sim(test::load_scene("triple_point.yaml", deck(layout)), MPI_COMM_WORLD, settings);
+  sim.restart(checkpoint);
+  EXPECT_EQ(sim.cycle(), from);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.ending, Ending::EndTime);
+  EXPECT_EQ(r.first_cycle, from);
+  if (world_rank() == 0)
+    std::printf("  restarted at cycle %ld, ended at cycle %ld, t = %.17g\n", from, r.cycles,
+                r.time);
+  return snapshot(sim);
+}
+
+void expect_identical(const Snapshot& a, const Snapshot& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t n = 0; n < a.size(); ++n) {
+    ASSERT_EQ(a[n].first, b[n].first);
+    ASSERT_EQ(a[n].second.size(), b[n].second.size());
+    double maxdiff = 0;
+    long differ = 0;
+    for (std::size_t i = 0; i < a[n].second.size(); ++i) {
+      const double d = std::abs(a[n].second[i] - b[n].second[i]);
+      // bit equality (NaN never equals itself, so a NaN counts as a difference)
+      if (!(a[n].second[i] == b[n].second[i])) ++differ;
+      maxdiff = std::max(maxdiff, d);
+    }
+    if (world_rank() == 0)
+      std::printf("  %s %-8s %6zu values  max |difference| %.3g  differing %ld\n", what.c_str(),
+                  a[n].first.c_str(), a[n].second.size(), maxdiff, differ);
+    EXPECT_EQ(differ, 0) << what << ": field " << a[n].first;
+    EXPECT_EQ(maxdiff, 0.0) << what << ": field " << a[n].first;
+  }
+}
+
+class Restart : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Restart, SameRankCountIsBitwiseEqual) {
+  const std::string layout = GetParam();
+  const Snapshot straight = straight_run(layout);
+  SharedDir dir;
+  const long at = 25;
+  const std::string ckpt = run_to_checkpoint(layout, at, MPI_COMM_WORLD, dir.path);
+  ASSERT_FALSE(ckpt.empty());
+  expect_identical(
+      straight, restarted_run(layout, ckpt, at),
+      layout + " " + std::to_string(world_size()) + "->" + std::to_string(world_size()));
+}
+
+TEST_P(Restart, FromHalfTheRanksIsBitwiseEqual) {
+  const std::string layout = GetParam();
+  const int n = world_size();
+  if (n < 2) GTEST_SKIP() << "needs 2 or more ranks";
+  const Snapshot straight = straight_run(layout);
+  SharedDir dir;
+  MPI_Comm half;
+  MPI_Comm_split(MPI_COMM_WORLD, world_rank() < n / 2 ? 0 : MPI_UNDEFINED, world_rank(), &half);
+  const long at = 31;
+  const std::string ckpt = run_to_checkpoint(layout, at, half, dir.path);
+  if (half != MPI_COMM_NULL) MPI_Comm_free(&half);
+  ASSERT_FALSE(ckpt.empty());
+  expect_identical(straight, restarted_run(layout, ckpt, at),
+                   layout + " " + std::to_string(n / 2) + "->" + std::to_string(n));
+}
+
+INSTANTIATE_TEST_SUITE_P(Layouts, Restart, ::testing::Values("dense", "compact"));
+
+TEST(RestartRefusal, AnotherDeckIsRefusedNamingTheKey) {
+  SharedDir dir;
+  const std::string ckpt = run_to_checkpoint("compact", 5, MPI_COMM_WORLD, dir.path);
+  auto d = deck("compact");
+  d.push_back("time.cfl=0.4");
+  RunSettings settings;
+  settings.quiet = true;
+  Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+  try {
+    sim.restart(ckpt);
+    ADD_FAILURE() << "a checkpoint of another deck was accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    if (world_rank() == 0) std::printf("  refused: %s\n", msg.c_str());
+    EXPECT_NE(msg.find("time.cfl: '0.5' in the checkpoint, '0.4' here"), std::string::npos) << msg;
+  }
+}
+
+TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
+  SharedDir dir;
+  const std::string ckpt = run_to_checkpoint("compact", 5, MPI_COMM_WORLD, dir.path);
+  // Rewrite the metadata as a build of the other precision would have written it.
+  const std::string other = sizeof(Real) == 8 ? "float" : "double";
+  if (world_rank() == 0) {
+    h5::Handle file;
+    HDF5_CHECK(file.reset(H5Fopen(ckpt.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose));
+    auto meta = nlohmann::json::parse(h5::read_string_attribute(file.get(), "meta"));
+    meta["real"] = other;
+    HDF5_CHECK(H5Adelete(file.get(), "meta"));
+    h5::write_string_attribute(file.get(), "meta", meta.dump());
+    HDF5_CHECK(file.close());
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  RunSettings settings;
+  settings.quiet = true;
+  Simulation sim(test::load_scene("triple_point.yaml", deck("compact")), MPI_COMM_WORLD, settings);
+  try {
+    sim.restart(ckpt);
+    ADD_FAILURE() << "a checkpoint of another build was accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    if (world_rank() == 0) std::printf("  refused: %s\n", msg.c_str());
+    EXPECT_NE(msg.find("with Real = " + other), std::string::npos) << msg;
+  }
+}
+
+TEST(RestartRefusal, KeepsTheNewestCheckpoints) {
+  SharedDir dir;
+  auto d = deck("compact");
+  d.push_back("time.max_cycles=20");
+  d.push_back("output.checkpoint_every={cycles: 4}");
+  d.push_back("output.checkpoint_keep=2");
+  RunSettings settings;
+  settings.quiet = true;
+  settings.output_dir = dir.path;
+  Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+  sim.initialize();
+  const RunResult r = sim.run();
+  const auto left = list_checkpoints(dir.path, "triple_point");
+  std::vector<long> cycles;
+  for (const auto& c : left) cycles.push_back(c.first);
+  if (world_rank() == 0)
+    std::printf("  wrote %zu checkpoints, kept cycles %s\n", r.checkpoints.size(),
+                ::testing::PrintToString(cycles).c_str());
+  EXPECT_EQ(r.checkpoints.size(), 5u);  // cycles 4, 8, 12, 16 and 20 (the stop)
+  EXPECT_EQ(cycles, (std::vector<long>{16, 20}));
+}
+
+TEST(RestartRefusal, WallClockCheckpointsFollowTheSlowestRank) {
+  // checkpoint_every.seconds: a rank whose clock says a checkpoint is due makes every rank
+  // write it; with 1 ns every cycle is due.
+  SharedDir dir;
+  auto d = deck("dense");
+  d.push_back("time.max_cycles=6");
+  d.push_back("output.checkpoint_every={seconds: 1.0e-9}");
+  d.push_back("output.checkpoint_keep=10");
+  RunSettings settings;
+  settings.quiet = true;
+  settings.output_dir = dir.path;
+  Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+  sim.initialize();
+  const RunResult r = sim.run();
+  std::vector<long> cycles;
+  for (const auto& c : list_checkpoints(dir.path, "triple_point")) cycles.push_back(c.first);
+  if (world_rank() == 0)
+    std::printf("  checkpoints by wall clock at cycles %s\n",
+                ::testing::PrintToString(cycles).c_str());
+  EXPECT_EQ(cycles, (std::vector<long>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(r.checkpoints.size(), 6u);
+}
+
+}  // namespace
