@@ -60,6 +60,17 @@ std::vector<std::string> deck(const std::string& layout) {
           "output.write=false"};
 }
 
+// A scene to restart: its deck, overrides and whether it must show mixed cells.
+struct Case {
+  std::string file;
+  std::vector<std::string> set;
+  bool mixed = true;
+};
+
+Case triple_point(const std::string& layout) {
+  return {"triple_point.yaml", deck(layout), true};
+}
+
 using Snapshot = std::vector<std::pair<std::string, std::vector<double>>>;
 
 // Every field a cycle reads or derives, gathered globally.
@@ -74,8 +85,8 @@ Snapshot snapshot(Simulation& sim) {
   return out;
 }
 
-Snapshot straight_run(const std::string& layout) {
-  auto r = test::run_scene(test::load_scene("triple_point.yaml", deck(layout)));
+Snapshot straight_run(const Case& c) {
+  auto r = test::run_scene(test::load_scene(c.file, c.set));
   EXPECT_TRUE(r.result.ok);
   EXPECT_EQ(r.result.ending, Ending::EndTime);
   Snapshot s = snapshot(*r.sim);
@@ -85,24 +96,26 @@ Snapshot straight_run(const std::string& layout) {
     if (name.rfind("alpha_", 0) == 0)
       for (double a : values) mixed += a > 0 && a < 1 ? 1 : 0;
   if (world_rank() == 0)
-    std::printf("  %s: %ld partial volume fractions at the end\n", layout.c_str(), mixed);
-  EXPECT_GT(mixed, 0);
+    std::printf("  %s: %ld partial volume fractions at the end, %zu fields\n", c.file.c_str(),
+                mixed, s.size());
+  if (c.mixed) {
+    EXPECT_GT(mixed, 0);
+  }
   return s;
 }
 
 // Runs the first `cycles` cycles on `comm` (the ranks not in it wait), writing a checkpoint in
 // `dir`; returns its path on every rank of the world.
-std::string run_to_checkpoint(const std::string& layout, long cycles, MPI_Comm comm,
-                              const std::string& dir) {
+std::string run_to_checkpoint(const Case& c, long cycles, MPI_Comm comm, const std::string& dir) {
   std::string path;
   if (comm != MPI_COMM_NULL) {
-    auto d = deck(layout);
+    auto d = c.set;
     d.push_back("time.max_cycles=" + std::to_string(cycles));
     d.push_back("output.checkpoint_every={cycles: " + std::to_string(cycles) + "}");
     RunSettings settings;
     settings.quiet = true;
     settings.output_dir = dir;
-    Simulation sim(test::load_scene("triple_point.yaml", d), comm, settings);
+    Simulation sim(test::load_scene(c.file, d), comm, settings);
     sim.initialize();
     const RunResult r = sim.run();
     EXPECT_EQ(r.ending, Ending::MaxCycles);
@@ -116,10 +129,10 @@ std::string run_to_checkpoint(const std::string& layout, long cycles, MPI_Comm c
   return buf;
 }
 
-Snapshot restarted_run(const std::string& layout, const std::string& checkpoint, long from) {
+Snapshot restarted_run(const Case& c, const std::string& checkpoint, long from) {
   RunSettings settings;
   settings.quiet = true;
-  Simulation sim(test::load_scene("triple_point.yaml", deck(layout)), MPI_COMM_WORLD, settings);
+  Simulation sim(test::load_scene(c.file, c.set), MPI_COMM_WORLD, settings);
   sim.restart(checkpoint);
   EXPECT_EQ(sim.cycle(), from);
   const RunResult r = sim.run();
@@ -157,13 +170,14 @@ class Restart : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Restart, SameRankCountIsBitwiseEqual) {
   const std::string layout = GetParam();
-  const Snapshot straight = straight_run(layout);
+  const Case c = triple_point(layout);
+  const Snapshot straight = straight_run(c);
   SharedDir dir;
   const long at = 25;
-  const std::string ckpt = run_to_checkpoint(layout, at, MPI_COMM_WORLD, dir.path);
+  const std::string ckpt = run_to_checkpoint(c, at, MPI_COMM_WORLD, dir.path);
   ASSERT_FALSE(ckpt.empty());
   expect_identical(
-      straight, restarted_run(layout, ckpt, at),
+      straight, restarted_run(c, ckpt, at),
       layout + " " + std::to_string(world_size()) + "->" + std::to_string(world_size()));
 }
 
@@ -171,23 +185,59 @@ TEST_P(Restart, FromHalfTheRanksIsBitwiseEqual) {
   const std::string layout = GetParam();
   const int n = world_size();
   if (n < 2) GTEST_SKIP() << "needs 2 or more ranks";
-  const Snapshot straight = straight_run(layout);
+  const Case c = triple_point(layout);
+  const Snapshot straight = straight_run(c);
   SharedDir dir;
   MPI_Comm half;
   MPI_Comm_split(MPI_COMM_WORLD, world_rank() < n / 2 ? 0 : MPI_UNDEFINED, world_rank(), &half);
   const long at = 31;
-  const std::string ckpt = run_to_checkpoint(layout, at, half, dir.path);
+  const std::string ckpt = run_to_checkpoint(c, at, half, dir.path);
   if (half != MPI_COMM_NULL) MPI_Comm_free(&half);
   ASSERT_FALSE(ckpt.empty());
-  expect_identical(straight, restarted_run(layout, ckpt, at),
+  expect_identical(straight, restarted_run(c, ckpt, at),
                    layout + " " + std::to_string(n / 2) + "->" + std::to_string(n));
 }
 
 INSTANTIATE_TEST_SUITE_P(Layouts, Restart, ::testing::Values("dense", "compact"));
 
+// The strength and burn modules' state (deviator, plastic strain, burn fraction, the burn clock)
+// survives a restart bit for bit, from half the ranks: an aluminium sphere driven obliquely
+// through a block (3-D shear, plasticity), and a point-detonated block of gamma-law explosive.
+TEST(ModuleRestart, StrengthAndBurnFromHalfTheRanksAreBitwiseEqual) {
+  const int n = world_size();
+  const std::vector<Case> cases = {
+      {"elastic_wave.yaml",
+       {"mesh.cells=[24,10,8]", "mesh.hi=[2,1,0.8]", "boundaries.x=reflective",
+        "materials.0.strength.model=elastic_plastic", "materials.0.strength.yield=0.0029",
+        "materials.0.strength.shear_modulus=0.276",
+        "regions=[{material: al, shape: all, density: 2.703, energy: 1.0e-5}, {material: al, "
+        "shape: sphere, center: [1, 0.5, 0.4], radius: 0.3, density: 2.703, energy: 1.0e-5, "
+        "velocity: [0.02, 0.01, -0.005]}]",
+        "time.end=0.6", "output.write=false"},
+       false},
+      {"mader.yaml",
+       {"mesh.cells=[24,10,8]", "mesh.hi=[1,0.4,0.32]",
+        "materials.0.burn.detonators=[{type: point, at: [0.1, 0.2, 0.16]}]", "time.end=0.5",
+        "output.write=false"},
+       false}};
+  for (const Case& c : cases) {
+    const Snapshot straight = straight_run(c);
+    SharedDir dir;
+    MPI_Comm half;
+    MPI_Comm_split(MPI_COMM_WORLD, world_rank() < (n + 1) / 2 ? 0 : MPI_UNDEFINED, world_rank(),
+                   &half);
+    const long at = 17;
+    const std::string ckpt = run_to_checkpoint(c, at, half, dir.path);
+    if (half != MPI_COMM_NULL) MPI_Comm_free(&half);
+    ASSERT_FALSE(ckpt.empty());
+    expect_identical(straight, restarted_run(c, ckpt, at),
+                     c.file + " " + std::to_string((n + 1) / 2) + "->" + std::to_string(n));
+  }
+}
+
 TEST(RestartRefusal, AnotherDeckIsRefusedNamingTheKey) {
   SharedDir dir;
-  const std::string ckpt = run_to_checkpoint("compact", 5, MPI_COMM_WORLD, dir.path);
+  const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);
   auto d = deck("compact");
   d.push_back("time.cfl=0.4");
   RunSettings settings;
@@ -205,7 +255,7 @@ TEST(RestartRefusal, AnotherDeckIsRefusedNamingTheKey) {
 
 TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
   SharedDir dir;
-  const std::string ckpt = run_to_checkpoint("compact", 5, MPI_COMM_WORLD, dir.path);
+  const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);
   // Rewrite the metadata as a build of the other precision would have written it.
   const std::string other = sizeof(Real) == 8 ? "float" : "double";
   if (world_rank() == 0) {
