@@ -10,9 +10,10 @@
 //    ratio to the triad compares like with like;
 //  - a node field read by a cell kernel (or a cell field by a node kernel) is charged over the
 //    kernel's own range (the two differ by one layer: (n+1)^3 against n^3);
-//  - halo::fill: every ghost point of every field of each of the cycle's 11 exchanges, read
-//    once (mirror source) and written once; the reflective wall nodes it zeroes (one layer)
-//    are not counted;
+//  - halo::fill: every ghost point of every field of each of the cycle's 11 exchanges (the
+//    shell of the block: its extent less the interior, each point written once as the one-rank
+//    fill does), read once (source) and written once; the reflective wall nodes it zeroes (one
+//    layer) are not counted; with neighbour ranks the per-axis fills and packs move more;
 //  - scalar reductions and MPI carry no field traffic.
 #pragma once
 #include <map>
@@ -73,13 +74,13 @@ inline const std::vector<KernelTraffic>& cycle_table() {
       {"remap::momentum", Range::NodesOwned, 8, 4, 3,
        "u v w node_mass F U V W -> ub vb wb ke_loss"},
       {"remap::ke_fix", Range::CellsOwned, 4, 1, 3, "ke_loss rho post e -> e"},
-      {"halo::fill", Range::HaloGhosts, 1, 1, 33, "ghost source -> ghost (per field)"},
+      {"halo::fill", Range::HaloGhosts, 1, 1, 11, "ghost source -> ghost (per field)"},
   };
   return t;
 }
 
-// Ghost points x fields of the cycle's 11 field exchanges, summed over the three axes (each
-// axis fills 2 ng layers across the whole extent of the other two, ghosts included).
+// Ghost points x fields of the cycle's 11 field exchanges: the view's extent less its
+// interior (2 ng ghost layers per axis), per field.
 inline double halo_points(const Mesh& m) {
   const int ng = Mesh::ng;
   double E[3], N[3];
@@ -88,7 +89,8 @@ inline double halo_points(const Mesh& m) {
     N[d] = m.extent(Centering::Node, d);
   }
   auto exchange = [&](int fields, const double* ext) {
-    return fields * 2.0 * ng * (ext[1] * ext[2] + ext[0] * ext[2] + ext[0] * ext[1]);
+    return fields *
+           (ext[0] * ext[1] * ext[2] - (ext[0] - 2 * ng) * (ext[1] - 2 * ng) * (ext[2] - 2 * ng));
   };
   double pts = exchange(6, N) + 4 * exchange(2, E) + 3 * exchange(3, N);
   for (int f = 0; f < 3; ++f) {  // face fluxes normal to f: node-like along f, cell-like across
@@ -126,7 +128,7 @@ inline double range_points(const Mesh& m, Range r) {
               (n[0] + 1) * (n[1] + 1) * (n[2] + 2)) /
              3;
     case Range::HaloGhosts:
-      return halo_points(m) / 33;  // per call, the mean over the cycle's 33 fills
+      return halo_points(m) / 11;  // per call, the mean over the cycle's 11 fills (one rank)
   }
   return 0;
 }

@@ -8,12 +8,13 @@
 // deep_copy of a scalar into a view is a "Kokkos::ViewFill" parallel_for).
 //
 // The counts are exact by construction (nothing in the cycle depends on the data), so the test
-// asserts equality. The halo part: a field exchange takes one launch per axis for all its fields
-// (kMaxFields = 8 in src/mesh/halo.cpp, exchanges carry 2-6), with reflective/outflow walls and a
-// periodic axis held by one rank filled in that launch and no message:
+// asserts equality. The halo part: a field exchange on a block with no neighbour rank (every
+// side a reflective/outflow wall or a periodic axis the block holds alone) is one `halo::fill`
+// launch for all its fields, all three axes and the walls (src/mesh/halo.cpp, `Local`); with
+// neighbour ranks it is one pack and one fill launch per axis.
 //   Lagrange: nodes (u, v, w, ub, vb, wb) + cells (rho, e)                   2 exchanges
 //   remap, per split sweep: face fluxes (mass, energy), cells, nodes       3 x 3 exchanges
-//   11 exchanges x 3 axes = 33 `halo::fill` launches, no `halo::pack`.
+//   11 exchanges = 11 `halo::fill` launches at one rank, no `halo::pack`.
 // The other kernels (kernels/hydro, not changed here): 37 launches.
 //   Lagrange: viscosity's q reset (ViewFill), viscosity, acceleration, predictor, corrector,
 //   volume_check, volume_flux_{x,y,z} x 2 (predictor and corrector)            = 12
@@ -22,7 +23,7 @@
 //   time step (timestep::cfl), EOS (eos::pressure_sound_speed),
 //   health::cells, health::nodes                                                = 4
 // Before the halo change the same cycle launched 130 kernels: 72 `halo::boundary` and
-// 21 `halo::wall_node` in place of the 33 `halo::fill`.
+// 21 `halo::wall_node` in place of the 11 `halo::fill` (48 in all now).
 #include <gtest/gtest.h>
 #include <mpi.h>
 
@@ -129,19 +130,19 @@ int world_size() {
 TEST(Launches, SingleMaterialCycleOneRank) {
   if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
   const Counted c = count_cycle("sedov.yaml");
-  EXPECT_EQ(c.halo_fill, 33);  // 11 exchanges x 3 axes (header comment)
+  EXPECT_EQ(c.halo_fill, 11);  // one per exchange (header comment)
   EXPECT_EQ(c.halo_pack, 0);   // no neighbour rank
   EXPECT_EQ(c.halo_other, 0);  // no separate wall-node or boundary launches
-  EXPECT_EQ(c.total, 70);      // 33 + the 37 launches of kernels/hydro
+  EXPECT_EQ(c.total, 48);      // 11 + the 37 launches of kernels/hydro
 }
 
-// Periodic on y and z held by one rank: filled in the same one launch per axis, no message
-// and no pack (a rank that is its own neighbour copies the opposite side directly).
+// Periodic on y and z held by one rank: filled in the same one launch, no message and no pack
+// (a rank that is its own neighbour copies the opposite side directly).
 TEST(Launches, PeriodicAxesOneRank) {
   if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
   const Counted c = count_cycle("sod_x.yaml");
-  EXPECT_EQ(c.halo_fill, 33);
+  EXPECT_EQ(c.halo_fill, 11);
   EXPECT_EQ(c.halo_pack, 0);
   EXPECT_EQ(c.halo_other, 0);
-  EXPECT_EQ(c.total, 70);
+  EXPECT_EQ(c.total, 48);
 }

@@ -202,6 +202,107 @@ void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer
       });
 }
 
+// The whole exchange in one launch, for a block with no neighbour rank on any side (every side
+// a physical boundary or a periodic axis it holds alone). The three sweeps x, y, z compose into
+// one index map per point: along each axis a ghost index maps to its source (mirror, wall copy
+// or the opposite side) and a factor (the parity for a mirror, else 1); a reflective wall node
+// of a field odd in that axis reads as zero, and the factors of the axes before it are lost
+// (the sweep along that axis wrote +0 there before mirroring). So the value is
+//   (product of the later factors) x (+0)  or  (product of all factors) x f(source),
+// bit for bit what the three sweeps leave (a factor of +-1 is exact, signed zeros included).
+// Sources are owned along every axis and never a zeroed wall, so no thread reads what another
+// writes. Iterates the (i, j) plane with a loop over k: every k in columns that are ghosts or
+// walls along x or y, only the ghost layers and walls along z elsewhere.
+struct Local {
+  Kokkos::Array<AxisPlan, 3> a;
+  int ext[3] = {0, 0, 0};
+  KOKKOS_INLINE_FUNCTION bool ghost(int d, int x, int& s) const {
+    s = x < a[d].ghost[0] + Mesh::ng && x >= a[d].ghost[0] ? 0 : 1;
+    return (x >= a[d].ghost[0] && x < a[d].ghost[0] + Mesh::ng) ||
+           (x >= a[d].ghost[1] && x < a[d].ghost[1] + Mesh::ng);
+  }
+  KOKKOS_INLINE_FUNCTION bool wall(int d, int x) const {
+    return (a[d].zero_wall[0] && x == a[d].wall[0]) || (a[d].zero_wall[1] && x == a[d].wall[1]);
+  }
+  KOKKOS_INLINE_FUNCTION bool special(int d, int x) const {
+    int s = 0;
+    return ghost(d, x, s) || wall(d, x);
+  }
+  KOKKOS_INLINE_FUNCTION void point(int i, int j, int k) const {
+    const int idx[3] = {i, j, k};
+    int src[3] = {i, j, k};
+    Real factor[3] = {1, 1, 1};
+    bool any = false;
+    for (int d = 0; d < 3; ++d) {
+      const AxisPlan& p = a[d];
+      int s = 0;
+      if (!ghost(d, idx[d], s)) continue;
+      any = true;
+      const int x = idx[d];
+      if (p.kind[s] == AxisPlan::Self) {
+        src[d] = p.send[1 - s] + x - p.ghost[s];
+      } else {
+        const int dir = s == 0 ? -1 : 1;
+        const int first_ghost = p.node ? p.wall[s] + dir : (s == 0 ? Mesh::ng - 1 : p.wall[s] + 1);
+        const int layer = (x - first_ghost) * dir;
+        if (p.kind[s] == AxisPlan::Reflective) {
+          src[d] = p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer;
+          factor[d] = -1;  // marks a mirror: the field's parity applies
+        } else {
+          src[d] = p.wall[s];
+        }
+      }
+    }
+    const bool at_wall = wall(0, idx[0]) || wall(1, idx[1]) || wall(2, idx[2]);
+    if (!any && !at_wall) return;
+    for (int q = 0; q < a[0].n; ++q) {
+      Real sgn = 1;
+      bool zero = false;
+      for (int d = 0; d < 3; ++d) {
+        const AxisPlan& p = a[d];
+        if (p.sign[q] < 0 &&
+            ((p.zero_wall[0] && src[d] == p.wall[0]) || (p.zero_wall[1] && src[d] == p.wall[1]))) {
+          zero = true;
+          sgn = 1;
+        }
+        if (factor[d] < 0) sgn *= p.sign[q];
+      }
+      if (zero) {
+        a[0].f[q](i, j, k) = sgn * Real(0);
+      } else if (any) {
+        a[0].f[q](i, j, k) = sgn * a[0].f[q](src[0], src[1], src[2]);
+      }
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j) const {
+    if (special(0, i) || special(1, j)) {
+      for (int k = 0; k < ext[2]; ++k) point(i, j, k);
+      return;
+    }
+    for (int s = 0; s < 2; ++s)
+      for (int k = a[2].ghost[s]; k < a[2].ghost[s] + Mesh::ng; ++k) point(i, j, k);
+    for (int s = 0; s < 2; ++s)
+      if (a[2].zero_wall[s]) point(i, j, a[2].wall[s]);
+  }
+};
+
+// The bytes a periodic axis held by one rank copies in place: what its two messages to itself
+// would carry (bytes_sent counts them, so a count does not depend on how the copy is done).
+double self_bytes(const AxisPlan& p, int nfields) {
+  double b = 0;
+  for (int s = 0; s < 2; ++s)
+    if (p.kind[s] == AxisPlan::Self) b += double(nfields) * p.per_field * sizeof(Real);
+  return b;
+}
+
+// True when every side of every axis is filled without a message.
+bool all_local(const Mesh& m) {
+  for (int d = 0; d < 3; ++d)
+    for (int s = 0; s < 2; ++s)
+      if (!m.physical_boundary(d, s) && m.neighbor(d, s) != m.rank()) return false;
+  return true;
+}
+
 MPI_Datatype mpi_real() {
   return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
 }
@@ -248,6 +349,18 @@ void Halo::exchange(const std::vector<HaloField>& fields) {
   for (const auto& f : fields)
     if (f.centering != fields[0].centering || f.face_axis != fields[0].face_axis)
       throw RunError("halo: one exchange takes fields of one layout");
+  if (all_local(mesh_) && fields.size() <= std::size_t(kMaxFields)) {
+    Local l;
+    for (int d = 0; d < 3; ++d) {
+      l.a[d] = plan_axis(mesh_, fields, 0, d);
+      l.ext[d] = mesh_.extent(fields[0].along(d), d);
+      bytes_sent_ += self_bytes(l.a[d], int(fields.size()));
+    }
+    Kokkos::parallel_for(
+        "halo::fill",
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {l.ext[0], l.ext[1]}), l);
+    return;
+  }
   for (int d = 0; d < 3; ++d) exchange_axis(fields, d);
 }
 
@@ -270,6 +383,7 @@ void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
       recv_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "halo::recv"), count);
     }
   }
+  bytes_sent_ += self_bytes(plans[0], nf);
   if (any) {
     for (std::size_t b = 0; b < plans.size(); ++b)
       pack(mesh_, f0, plans[b], send_[0], send_[1], int(b) * kMaxFields);
