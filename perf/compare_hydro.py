@@ -5,7 +5,7 @@ Writes perf/results/hydro.json (every run's JSON, old and new, and the medians) 
 perf/results/hydro.md (the comparison, then the new binary's full report of its last run).
 
   compare_hydro.py OLD_BENCH NEW_BENCH --old-commit SHA --new-commit SHA [--sizes 64]
-                   [--cycles 10] [--reps 3] [--note '...'] [--out perf/results]
+                   [--cycles 10] [--reps 3] [--note '...'] [--out perf/results] [--name hydro]
 """
 import argparse
 import json
@@ -33,6 +33,7 @@ def main():
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--note", default="")
     ap.add_argument("--out", default="perf/results")
+    ap.add_argument("--name", default="hydro", help="basename of the .md and .json written")
     a = ap.parse_args()
     res = {"old": [], "new": []}
     last_new = ""
@@ -70,9 +71,9 @@ def main():
                   f"{', '.join(f'{x:.1f}' for x in st['old'])}; {', '.join(f'{x:.1f}' for x in st['new'])} |")
     md += ["", "## New binary, last run (its own report)", "", "```", last_new.strip(), "```", ""]
     os.makedirs(a.out, exist_ok=True)
-    with open(os.path.join(a.out, "hydro.md"), "w") as f:
+    with open(os.path.join(a.out, a.name + ".md"), "w") as f:
         f.write("\n".join(md))
-    with open(os.path.join(a.out, "hydro.json"), "w") as f:
+    with open(os.path.join(a.out, a.name + ".json"), "w") as f:
         json.dump({"old_commit": a.old_commit, "new_commit": a.new_commit, "note": a.note,
                    "summary": summary, "runs": res}, f, indent=1)
     print("\n".join(md))

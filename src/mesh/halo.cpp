@@ -224,65 +224,89 @@ struct Local {
   KOKKOS_INLINE_FUNCTION bool wall(int d, int x) const {
     return (a[d].zero_wall[0] && x == a[d].wall[0]) || (a[d].zero_wall[1] && x == a[d].wall[1]);
   }
-  KOKKOS_INLINE_FUNCTION bool special(int d, int x) const {
+  // The source index of x along d and whether it is a mirror (the field's parity applies).
+  KOKKOS_INLINE_FUNCTION int source(int d, int x, bool& ghosted, bool& mirror) const {
+    const AxisPlan& p = a[d];
     int s = 0;
-    return ghost(d, x, s) || wall(d, x);
+    mirror = false;
+    ghosted = ghost(d, x, s);
+    if (!ghosted) return x;
+    if (p.kind[s] == AxisPlan::Self) return p.send[1 - s] + x - p.ghost[s];
+    const int dir = s == 0 ? -1 : 1;
+    const int first_ghost = p.node ? p.wall[s] + dir : (s == 0 ? Mesh::ng - 1 : p.wall[s] + 1);
+    const int layer = (x - first_ghost) * dir;
+    if (p.kind[s] == AxisPlan::Outflow) return p.wall[s];
+    mirror = true;
+    return p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer;
   }
-  KOKKOS_INLINE_FUNCTION void point(int i, int j, int k) const {
-    const int idx[3] = {i, j, k};
-    int src[3] = {i, j, k};
-    Real factor[3] = {1, 1, 1};
-    bool any = false;
-    for (int d = 0; d < 3; ++d) {
-      const AxisPlan& p = a[d];
-      int s = 0;
-      if (!ghost(d, idx[d], s)) continue;
-      any = true;
-      const int x = idx[d];
-      if (p.kind[s] == AxisPlan::Self) {
-        src[d] = p.send[1 - s] + x - p.ghost[s];
-      } else {
-        const int dir = s == 0 ? -1 : 1;
-        const int first_ghost = p.node ? p.wall[s] + dir : (s == 0 ? Mesh::ng - 1 : p.wall[s] + 1);
-        const int layer = (x - first_ghost) * dir;
-        if (p.kind[s] == AxisPlan::Reflective) {
-          src[d] = p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer;
-          factor[d] = -1;  // marks a mirror: the field's parity applies
-        } else {
-          src[d] = p.wall[s];
-        }
-      }
-    }
-    const bool at_wall = wall(0, idx[0]) || wall(1, idx[1]) || wall(2, idx[2]);
-    if (!any && !at_wall) return;
-    for (int q = 0; q < a[0].n; ++q) {
-      Real sgn = 1;
-      bool zero = false;
-      for (int d = 0; d < 3; ++d) {
-        const AxisPlan& p = a[d];
-        if (p.sign[q] < 0 &&
-            ((p.zero_wall[0] && src[d] == p.wall[0]) || (p.zero_wall[1] && src[d] == p.wall[1]))) {
-          zero = true;
-          sgn = 1;
-        }
-        if (factor[d] < 0) sgn *= p.sign[q];
-      }
-      if (zero) {
-        a[0].f[q](i, j, k) = sgn * Real(0);
-      } else if (any) {
-        a[0].f[q](i, j, k) = sgn * a[0].f[q](src[0], src[1], src[2]);
-      }
-    }
+  // Field q read at source index src along d is a zeroed wall node.
+  KOKKOS_INLINE_FUNCTION bool zeroed(int d, int src, int q) const {
+    const AxisPlan& p = a[d];
+    return p.sign[q] < 0 &&
+           ((p.zero_wall[0] && src == p.wall[0]) || (p.zero_wall[1] && src == p.wall[1]));
   }
+  // One column (i, j): the maps of axes x and y once, then the points along z.
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j) const {
-    if (special(0, i) || special(1, j)) {
-      for (int k = 0; k < ext[2]; ++k) point(i, j, k);
+    bool g0, g1, m0, m1;
+    const int s0 = source(0, i, g0, m0), s1 = source(1, j, g1, m1);
+    const bool w01 = wall(0, i) || wall(1, j);
+    const int n = a[0].n;
+    Real fac[kMaxFields];
+    bool zero[kMaxFields];
+    for (int q = 0; q < n; ++q) {
+      Real sgn = 1;
+      bool z = false;
+      if (zeroed(0, s0, q)) z = true, sgn = 1;
+      if (m0) sgn *= a[0].sign[q];
+      if (zeroed(1, s1, q)) z = true, sgn = 1;
+      if (m1) sgn *= a[1].sign[q];
+      fac[q] = sgn;
+      zero[q] = z;
+    }
+    auto point = [&](int k) {
+      bool g2, m2;
+      const int s2 = source(2, k, g2, m2);
+      const bool any = g0 || g1 || g2;
+      if (!any && !w01 && !wall(2, k)) return;
+      for (int q = 0; q < n; ++q) {
+        Real sgn = fac[q];
+        bool z = zero[q];
+        if (zeroed(2, s2, q)) z = true, sgn = 1;
+        if (m2) sgn *= a[2].sign[q];
+        const Field3& f = a[0].f[q];
+        if (z)
+          f(i, j, k) = sgn * Real(0);
+        else if (any)
+          f(i, j, k) = sgn * f(s0, s1, s2);
+      }
+    };
+    if (g0 || g1 || w01) {
+      // the ghosts and walls along z point by point, the owned run between them in one loop
+      // per field (there, no z map: the value is fac x f(s0, s1, k), or fac x 0)
+      const AxisPlan& p = a[2];
+      for (int s = 0; s < 2; ++s)
+        for (int k = p.ghost[s]; k < p.ghost[s] + Mesh::ng; ++k) point(k);
+      int b = Mesh::ng, e = p.ghost[1];
+      if (p.zero_wall[0]) point(b++);  // wall[0] == ng
+      if (p.zero_wall[1]) point(--e);  // wall[1] == ng + nl, the last owned node
+      if (!(g0 || g1)) {
+        for (int k = b; k < e; ++k) point(k);
+        return;
+      }
+      for (int q = 0; q < n; ++q) {
+        const Field3& f = a[0].f[q];
+        const Real c = fac[q];
+        if (zero[q])
+          for (int k = b; k < e; ++k) f(i, j, k) = c * Real(0);
+        else
+          for (int k = b; k < e; ++k) f(i, j, k) = c * f(s0, s1, k);
+      }
       return;
     }
     for (int s = 0; s < 2; ++s)
-      for (int k = a[2].ghost[s]; k < a[2].ghost[s] + Mesh::ng; ++k) point(i, j, k);
+      for (int k = a[2].ghost[s]; k < a[2].ghost[s] + Mesh::ng; ++k) point(k);
     for (int s = 0; s < 2; ++s)
-      if (a[2].zero_wall[s]) point(i, j, a[2].wall[s]);
+      if (a[2].zero_wall[s]) point(a[2].wall[s]);
   }
 };
 
