@@ -146,3 +146,15 @@ TEST(Launches, PeriodicAxesOneRank) {
   EXPECT_EQ(c.halo_other, 0);
   EXPECT_EQ(c.total, 48);
 }
+
+// Two ranks (the box split along one axis): an exchange with a neighbour rank is one pack and
+// one fill launch along the split axis and one fill along each other axis (held alone: walls
+// or periodic copies), so 11 x (1 pack + 3 fills).
+TEST(Launches, SingleMaterialCycleTwoRanks) {
+  if (world_size() != 2) GTEST_SKIP() << "a two-rank count";
+  const Counted c = count_cycle("sedov.yaml");
+  EXPECT_EQ(c.halo_fill, 33);
+  EXPECT_EQ(c.halo_pack, 11);
+  EXPECT_EQ(c.halo_other, 0);
+  EXPECT_EQ(c.total, 81);  // 44 + the 37 launches of kernels/hydro
+}
