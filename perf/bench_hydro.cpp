@@ -3,6 +3,9 @@
 // bandwidth of the same process. Writes JSON (machine-readable) and prints a markdown table,
 // then a per-kernel breakdown from a separate block of cycles with a Kokkos::fence before and
 // after every kernel (perf/kernel_timer.hpp; the plain timing has no extra fences).
+// Bandwidths come from the counted traffic model of perf/bytes_model.hpp (per kernel: fields
+// read and written over its range); kernel launches per cycle are counted through the Kokkos
+// Tools callbacks of the breakdown block (perf/kernel_timer.hpp).
 //   bench_hydro [--sizes 32,64] [--cycles 40] [--no-breakdown] [--json perf/results/hydro.json]
 #include <mpi.h>
 
@@ -13,6 +16,7 @@
 #include <sstream>
 #include <vector>
 
+#include "bytes_model.hpp"
 #include "config/scene.hpp"
 #include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
@@ -21,12 +25,6 @@
 #include "report.hpp"
 
 using namespace mp;
-
-// Bytes per cell per cycle behind the bandwidth column. A traffic model, not a measurement:
-// ~20 cell and node fields, each passed over about 8 times a cycle (predictor, corrector, EOS
-// and q, three remap sweeps, time step and check), 20 x 8 x sizeof(Real) = 1280 B/cell in
-// double, 640 in float; the implied bandwidth shows the distance from STREAM.
-constexpr double kBytesPerCell = 20.0 * 8 * sizeof(Real);
 
 int main(int argc, char** argv) {
   mp::prepare_mpi_environment();
@@ -75,13 +73,23 @@ int main(int argc, char** argv) {
         const char* const* phase_names = perf::CycleTimes::names;
         const double cells = double(s) * s * s;
         const double rate = cells * cycles / wall;
+        // the counted model, summed over the ranks' blocks
+        const std::map<std::string, double> model = perf::cycle_bytes(sim.mesh());
+        double cycle_bytes = 0;
+        for (const auto& kv : model) cycle_bytes += kv.second;
+        MPI_Allreduce(MPI_IN_PLACE, &cycle_bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+        const double gbs = cycle_bytes * cycles / wall / 1e9;
         rows << "| " << s << "^3 | " << cycles << " | " << wall / cycles * 1e3 << " | "
-             << rate / 1e6 << " | " << rate * kBytesPerCell / 1e9 << " |";
+             << rate / 1e6 << " | " << cycle_bytes / cells << " | " << gbs << " | "
+             << 100 * gbs / st.triad_gbs << " |";
         for (int ph = 0; ph < 5; ++ph) rows << " " << 100 * phase[ph] / wall << " |";
         rows << "\n";
         js << (n ? "," : "") << "\n    {\"cells_per_axis\": " << s << ", \"cells\": " << cells
            << ", \"cycles\": " << cycles << ", \"seconds_per_cycle\": " << wall / cycles
-           << ", \"cell_cycles_per_second\": " << rate << ", \"phase_seconds_per_cycle\": {";
+           << ", \"cell_cycles_per_second\": " << rate
+           << ", \"model_bytes_per_cell\": " << cycle_bytes / cells << ", \"model_GBs\": " << gbs
+           << ", \"percent_of_stream\": " << 100 * gbs / st.triad_gbs
+           << ", \"phase_seconds_per_cycle\": {";
         for (int ph = 0; ph < 5; ++ph)
           js << (ph ? ", " : "") << "\"" << phase_names[ph] << "\": " << phase[ph] / cycles;
         js << "}";
@@ -105,27 +113,54 @@ int main(int argc, char** argv) {
           std::sort(ks.begin(), ks.end(), [](const auto& a, const auto& b) {
             return a.second.seconds > b.second.seconds;
           });
-          double in_kernels = 0;
+          double in_kernels = 0, launches = 0, halo_launches = 0, modelled = 0, in_model = 0;
           js << ", \"breakdown\": {\"fenced_seconds_per_cycle\": " << fenced / cycles
              << ", \"kernels\": {";
           for (std::size_t q = 0; q < ks.size(); ++q) {
+            const std::string& name = ks[q].first;
+            const double sec = ks[q].second.seconds / cycles;
+            const double calls = double(ks[q].second.calls) / cycles;
             in_kernels += ks[q].second.seconds;
-            js << (q ? ", " : "") << "\"" << ks[q].first
-               << "\": {\"seconds_per_cycle\": " << ks[q].second.seconds / cycles
-               << ", \"calls_per_cycle\": " << double(ks[q].second.calls) / cycles << "}";
-            // kernels above 2 % of the fenced cycle get a table row
-            if (ks[q].second.seconds > 0.02 * fenced)
-              krows << "| " << s << "^3 | " << ks[q].first << " | "
-                    << ks[q].second.seconds / cycles * 1e3 << " | "
-                    << double(ks[q].second.calls) / cycles << " | "
-                    << 100 * ks[q].second.seconds / fenced << " |\n";
+            launches += calls;
+            if (name.rfind("halo::", 0) == 0) halo_launches += calls;
+            const auto m = model.find(name);
+            const double bytes = m == model.end() ? 0 : m->second;  // this rank's block
+            const double kgbs = bytes / sec / 1e9;
+            if (bytes > 0) {
+              modelled += bytes;
+              in_model += sec;
+            }
+            js << (q ? ", " : "") << "\"" << name << "\": {\"seconds_per_cycle\": " << sec
+               << ", \"calls_per_cycle\": " << calls << ", \"model_bytes_per_cycle\": " << bytes
+               << ", \"model_GBs\": " << kgbs << "}";
+            char line[256];
+            std::snprintf(line, sizeof line,
+                          "| %d^3 | %s | %.3f | %g | %.1f | %.3g | %.1f | %.0f |\n", s,
+                          name.c_str(), sec * 1e3, calls, 100 * sec * cycles / fenced,
+                          bytes / cells * nranks, kgbs, 100 * kgbs / st.triad_gbs);
+            krows << (bytes > 0 ? line : "");
+            if (bytes == 0 && ks[q].second.seconds > 0.02 * fenced)
+              krows << "| " << s << "^3 | " << name << " | " << sec * 1e3 << " | " << calls << " | "
+                    << 100 * sec * cycles / fenced << " | (not modelled) | | |\n";
           }
-          js << "}}";
-          krows << "| " << s << "^3 | (outside kernels: MPI, host) | "
-                << (fenced - in_kernels) / cycles * 1e3 << " | | "
-                << 100 * (fenced - in_kernels) / fenced << " |\n";
-          krows << "| " << s << "^3 | **fenced cycle** | " << fenced / cycles * 1e3
-                << " | | 100 |\n";
+          js << "}, \"launches_per_cycle\": " << launches
+             << ", \"halo_launches_per_cycle\": " << halo_launches
+             << ", \"model_GBs_in_modelled_kernels\": " << modelled / in_model / 1e9 << "}";
+          char line[320];
+          std::snprintf(
+              line, sizeof line,
+              "| %d^3 | (outside kernels: MPI, host) | %.3f | | %.1f | | | |\n"
+              "| %d^3 | **modelled kernels, fenced** | %.3f | | %.1f | %.0f | %.1f | %.0f |\n"
+              "| %d^3 | **fenced cycle: %g launches (%g halo)** | %.3f | %g | 100 | | | |\n",
+              s, (fenced - in_kernels) / cycles * 1e3, 100 * (fenced - in_kernels) / fenced, s,
+              in_model * 1e3, 100 * in_model * cycles / fenced, modelled / cells * nranks,
+              modelled / in_model / 1e9, 100 * modelled / in_model / 1e9 / st.triad_gbs, s,
+              launches, halo_launches, fenced / cycles * 1e3, launches);
+          krows << line;
+          if (rank == 0)
+            std::printf(
+                "%d^3: %g kernel launches per cycle, %g of them halo (Kokkos Tools count)\n", s,
+                launches, halo_launches);
         }
         js << "}";
       }
@@ -134,17 +169,19 @@ int main(int argc, char** argv) {
         std::printf("STREAM triad (same process): %.2f GB/s; %s, %d threads/rank, %d ranks\n\n",
                     st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks);
         std::printf(
-            "| size | cycles | ms/cycle | Mcell-cycles/s | GB/s at %.0f B/cell | %% time step "
-            "| %% lagrange | %% remap | %% eos+q | %% check |\n"
-            "|---|---|---|---|---|---|---|---|---|---|\n%s",
-            kBytesPerCell, rows.str().c_str());
+            "| size | cycles | ms/cycle | Mcell-cycles/s | model B/cell | model GB/s | %% of "
+            "STREAM "
+            "| %% time step | %% lagrange | %% remap | %% eos+q | %% check |\n"
+            "|---|---|---|---|---|---|---|---|---|---|---|---|\n%s",
+            rows.str().c_str());
         if (!no_breakdown)
           std::printf(
               "\nPer-kernel breakdown (separate block, Kokkos::fence before and after every "
-              "kernel; "
-              "kernels above 2 %% of the fenced cycle):\n\n"
-              "| size | kernel | ms/cycle | calls/cycle | %% of fenced cycle |\n"
-              "|---|---|---|---|---|\n%s",
+              "kernel), with the counted traffic model of perf/bytes_model.hpp (B/cell per cycle, "
+              "GB/s and %% of the STREAM triad above; unmodelled kernels shown above 2 %%):\n\n"
+              "| size | kernel | ms/cycle | calls/cycle | %% of fenced cycle | model B/cell | GB/s "
+              "| %% of STREAM |\n"
+              "|---|---|---|---|---|---|---|---|\n%s",
               krows.str().c_str());
         perf::write_json(json, js.str());
       }

@@ -1,9 +1,11 @@
 // The layout study (DESIGN.md §3.1): the same multi-material scene run in the dense layout (the
 // paper's: every cell holds every material) and the compact layout (pure cells in the cell
 // arrays, mixed cells in a CSR list), sweeping the number of materials and the fraction of
-// mixed cells. Reports time per cycle (and per phase), a per-kernel breakdown, bytes of
-// per-material state per cell, and the dense/compact ratio, beside the STREAM triad of the same
-// process, as two markdown tables and JSON (perf/plot_layouts.py draws the PNG).
+// mixed cells. Reports time per cycle (and per phase), a per-kernel breakdown, bytes per cell
+// from the allocations themselves (live Kokkos View allocations after set-up and warm-up, seen
+// through the Kokkos Tools callbacks, perf/memory.hpp: the material state, labels "dense::",
+// "compact::", and the whole run), and the dense/compact ratio, beside the STREAM triad
+// of the same process, as two markdown tables and JSON (perf/plot_layouts.py draws the PNG).
 //
 // The scene: an nx x ny x nz box of stripes normal to x, each `width` cells wide, materials
 // cycling through the stripes; each stripe boundary sits in the middle of a cell, so exactly
@@ -39,6 +41,7 @@
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
+#include "memory.hpp"
 #include "report.hpp"
 
 using namespace mp;
@@ -142,7 +145,10 @@ struct LayoutRun {
   std::map<std::string, perf::KernelStat> regions;  // breakdown block (rank 0)
   double breakdown_wall = 0;                        // seconds of the breakdown block
   long allocations = 0;                             // Kokkos allocations in the breakdown block
-  double bytes = 0;                                 // per-material state per owned cell
+  double bytes = 0;                                 // per-material state per owned cell (model)
+  double alloc_state = 0;  // per owned cell: live Kokkos allocations of the material state
+  double alloc_all = 0;    // per owned cell: every live Kokkos allocation of the run
+  double alloc_halo = 0;   // per owned cell: the material halo's message buffers
 
   void time_block(int cycles) {
     const perf::CycleTimes ct = perf::run_cycles(sim->hydro(), clock, 0, cycles);
@@ -272,6 +278,8 @@ int main(int argc, char** argv) {
         for (int width : widths) {
           LayoutRun run[2];
           for (int l = 0; l < 2; ++l) {
+            // the allocations this layout's run makes and keeps through set-up and warm-up
+            perf::AllocationTracker mem;
             const Scene scene = read_scene(
                 Deck::parse(stripes_deck(nmat, width, cells, layouts[l]), "layouts.yaml"));
             RunSettings settings;
@@ -279,6 +287,15 @@ int main(int argc, char** argv) {
             run[l].sim = std::make_unique<Simulation>(scene, MPI_COMM_WORLD, settings);
             run[l].sim->initialize();
             perf::run_cycles(run[l].sim->hydro(), run[l].clock, warmup, 0);
+            // material state: the layouts' arrays ("dense::", "compact::"); the material
+            // halo's message buffers ("matter::") apart
+            double b[3] = {mem.live_bytes_with("dense::", "compact::"), mem.live_bytes(),
+                           mem.live_bytes_with("matter::")};
+            MPI_Allreduce(MPI_IN_PLACE, b, 3, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+            const double ncells = double(run[l].sim->mesh().global_cell_count());
+            run[l].alloc_state = b[0] / ncells;
+            run[l].alloc_all = b[1] / ncells;
+            run[l].alloc_halo = b[2] / ncells;
           }
           const CpuSample c0 = cpu_sample();
           for (int b = 0; b < repeats; ++b)
@@ -315,10 +332,12 @@ int main(int argc, char** argv) {
           char line[512];
           std::snprintf(line, sizeof line,
                         "| %d | %g | %.2f | %.2f | %.2f | %.2f | %.2f, %.2f | %.0f | %.1f | %.1f "
-                        "| %.0f |\n",
+                        "| %.0f, %.0f | %.0f |\n",
                         nmat, 100.0 / width, 100 * mixed_frac, run[0].seconds() * 1e3,
                         run[1].seconds() * 1e3, ratio, run[0].spread(), run[1].spread(),
-                        run[0].bytes, run[1].bytes, run[0].bytes / run[1].bytes, 100 * others);
+                        run[0].alloc_state, run[1].alloc_state,
+                        run[0].alloc_state / run[1].alloc_state, run[0].alloc_all, run[1].alloc_all,
+                        100 * others);
           rows << line;
           js << (first ? "" : ",") << "\n    {\"materials\": " << nmat
              << ", \"stripe_width\": " << width << ", \"mixed_fraction_design\": " << 1.0 / width
@@ -328,6 +347,12 @@ int main(int argc, char** argv) {
              << ", \"dense_over_compact_time\": " << ratio
              << ", \"dense_bytes_per_cell\": " << run[0].bytes
              << ", \"compact_bytes_per_cell\": " << run[1].bytes
+             << ", \"dense_allocated_state_bytes_per_cell\": " << run[0].alloc_state
+             << ", \"compact_allocated_state_bytes_per_cell\": " << run[1].alloc_state
+             << ", \"dense_allocated_material_halo_bytes_per_cell\": " << run[0].alloc_halo
+             << ", \"compact_allocated_material_halo_bytes_per_cell\": " << run[1].alloc_halo
+             << ", \"dense_allocated_bytes_per_cell\": " << run[0].alloc_all
+             << ", \"compact_allocated_bytes_per_cell\": " << run[1].alloc_all
              << ", \"others_cpu_share\": " << others;
           for (int l = 0; l < 2; ++l) {
             const LayoutRun& r = run[l];
@@ -398,10 +423,16 @@ int main(int argc, char** argv) {
             cells[2], warmup, repeats, cycles);
         if (!note.empty()) std::printf("%s\n", note.c_str());
         std::printf(
+            "B/cell: live Kokkos allocations per owned cell after set-up and warm-up (Kokkos "
+            "Tools allocate/deallocate callbacks): the material state (dense::, compact:: labels: "
+            "cell and slot arrays, face fluxes) and the whole run (every field, the field and "
+            "material halo buffers, the material state).\n");
+        std::printf(
             "\n| materials | mixed %% (design) | mixed %% (owned cells) | dense ms/cycle "
             "| compact ms/cycle | dense/compact time | max/min over blocks (dense, compact) "
-            "| dense B/cell | compact B/cell | dense/compact memory | CPU taken by others %% "
-            "|\n|---|---|---|---|---|---|---|---|---|---|---|\n%s",
+            "| dense B/cell | compact B/cell | dense/compact memory | whole run B/cell (dense, "
+            "compact) | CPU taken by others %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|"
+            "\n%s",
             rows.str().c_str());
         if (breakdown) {
           std::printf(

@@ -16,6 +16,8 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   auto c = s_.c, q = s_.q, rho = s_.rho, u = s_.u, v = s_.v, w = s_.w;
   const Real cfl = opt_.cfl;
   const bool unsplit = opt_.unsplit;
+  const bool separate = opt_.separate_limits;
+  const Real cfl_u = opt_.cfl_transport;
   const int nlx = g.nl[0], nly = g.nl[1], ng = g.ng;
   using MinLoc = Kokkos::MinLoc<Real, long>;
   typename MinLoc::value_type best;
@@ -33,6 +35,19 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
               vmax[2] = mmax(vmax[2], mabs(w(i + a, j + b, k + cc)));
             }
         Real dt = FLT_MAX;
+        if (separate) {  // each limit with its own safety factor, applied here
+          for (int d = 0; d < 3; ++d)
+            dt = mmin(dt, mmin(cfl * g.dx[d] / (ceff + Real(1e-30)),
+                               cfl_u * g.dx[d] / (vmax[d] + Real(1e-30))));
+          if (unsplit)
+            dt = mmin(dt, cfl_u / (vmax[0] / g.dx[0] + vmax[1] / g.dx[1] + vmax[2] / g.dx[2] +
+                                   Real(1e-30)));
+          if (dt < acc.val) {
+            acc.val = dt;
+            acc.loc = 2 * ((i - ng) + long(nlx) * ((j - ng) + long(nly) * (k - ng)));
+          }
+          return;
+        }
         for (int d = 0; d < 3; ++d) dt = mmin(dt, g.dx[d] / (ceff + vmax[d] + Real(1e-30)));
         // an unsplit remap moves material across all faces at once: bound the Courant sum
         long sum_bound = 0;  // 1 where that bound is the tighter one (logged "courant_sum")

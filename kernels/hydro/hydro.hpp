@@ -53,6 +53,12 @@ struct Options {
   Real q_linear = 0.2;
   Real q_quadratic = 1.0;
   Real cfl = 0.5;
+  // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
+  // sound speed and the transport speed limit the step each on its own, with its own safety
+  // factor: dt = min_d min(cfl dx_d / c_eff, cfl_transport dx_d / |u_d|) (perf/timestep_study.cpp
+  // measures it on the verification scenes; docs/numerics.md says why it is not the default).
+  bool separate_limits = false;
+  Real cfl_transport = 0.5;
   Real growth = 1.1;
   Real dt_max = 1e30;
   // Give the kinetic energy that the momentum remap dissipates back to the cells as internal
@@ -134,6 +140,11 @@ class Hydro {
   State& state() { return s_; }
   const State& state() const { return s_; }
   const Options& options() const { return opt_; }
+  // Switches the time-step rule (the scene reader does not set it; perf/timestep_study.cpp).
+  void set_time_limits(bool separate, Real cfl_transport) {
+    opt_.separate_limits = separate;
+    opt_.cfl_transport = cfl_transport;
+  }
   // The per-material state of a multi-material scene, or nullptr.
   mat::MaterialState* materials() { return mm_.get(); }
   const mat::MaterialState* materials() const { return mm_.get(); }

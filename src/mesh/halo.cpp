@@ -10,7 +10,6 @@ namespace {
 struct Slab {
   int lo[3], hi[3];
   int size() const { return (hi[0] - lo[0]) * (hi[1] - lo[1]) * (hi[2] - lo[2]); }
-  Policy3 policy() const { return Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}); }
 };
 
 Slab slab(const Mesh& mesh, const HaloField& f, int d, int first, int last) {
@@ -25,120 +24,307 @@ Slab slab(const Mesh& mesh, const HaloField& f, int d, int first, int last) {
   return s;
 }
 
-// A reflective wall node of a field odd under reflection in d (the normal velocity) is zero.
-// Done before the sweep along d packs anything: a block only ng cells thick sends its wall node
-// to the neighbour, which must receive the zero, not the value the wall node had before.
-void zero_wall_node(const Mesh& mesh, const HaloField& hf, int d, int side) {
-  if (hf.along(d) != Centering::Node || hf.parity[d] >= 0) return;
-  if (!mesh.physical_boundary(d, side) || mesh.boundary(d, side) != BoundaryKind::Reflective)
-    return;
-  const int wall = side == 0 ? Mesh::ng : Mesh::ng + mesh.owned_cells(d);
-  const Slab w = slab(mesh, hf, d, wall, wall + 1);
-  auto f = hf.view;
-  Kokkos::parallel_for(
-      "halo::wall_node", w.policy(), KOKKOS_LAMBDA(int i, int j, int k) { f(i, j, k) = 0; });
-}
-
 // Index ranges along d for what side s sends and what it receives.
 // Cells: send the ng owned layers next to the face, receive into the ng ghost layers.
 // Nodes: the face node is shared and never sent; send the ng layers inside it.
-void send_range(const Mesh& m, Centering c, int d, int s, int& first, int& last) {
+int send_first(const Mesh& m, Centering c, int d, int s) {
   const int ng = Mesh::ng, nl = m.owned_cells(d);
-  if (c == Centering::Cell) {
-    first = s == 0 ? ng : nl;
-  } else {
-    first = s == 0 ? ng + 1 : nl;
-  }
-  last = first + ng;
+  if (c == Centering::Cell) return s == 0 ? ng : nl;
+  return s == 0 ? ng + 1 : nl;
 }
-void recv_range(const Mesh& m, Centering c, int d, int s, int& first, int& last) {
+int recv_first(const Mesh& m, Centering c, int d, int s) {
   const int ng = Mesh::ng, nl = m.owned_cells(d);
-  if (c == Centering::Cell) {
-    first = s == 0 ? 0 : ng + nl;
-  } else {
-    first = s == 0 ? 0 : ng + nl + 1;
-  }
-  last = first + ng;
+  if (c == Centering::Cell) return s == 0 ? 0 : ng + nl;
+  return s == 0 ? 0 : ng + nl + 1;
 }
 
-// Up to kBatch fields of one layout handled by one kernel (one launch per slab instead of one
-// per field); exchanges carry two or three fields.
-constexpr int kBatch = 4;
-struct Batch {
-  Kokkos::Array<Field3, kBatch> f;
-  Kokkos::Array<Real, kBatch> sign;  // parity under reflection along the sweep's axis
-  int n = 0;
-  int first = 0;  // index of the batch's first field in the exchange
+// Every field of an exchange (up to kMaxFields, one layout) handled by one kernel per axis.
+constexpr int kMaxFields = 8;
+
+// What one axis of an exchange does on each side, as a kernel sees it. The kernel's index along
+// the axis is a layer number t, not a mesh index: t in [0, ng) are the ghost layers of side 0,
+// [ng, 2 ng) those of side 1, and (node fields next to a reflective wall) 2 ng and 2 ng + 1 the
+// wall nodes of sides 0 and 1. The other two axes run over their whole extent, ghosts included.
+struct AxisPlan {
+  // Neighbour: another rank sends the layers. Self: a periodic axis with one rank along it, the
+  // layers copied from the opposite side of this block, with no message. Reflective, Outflow:
+  // a physical boundary.
+  enum Kind { Neighbour = 0, Self = 1, Reflective = 2, Outflow = 3 };
+  Kokkos::Array<Field3, kMaxFields> f;
+  Kokkos::Array<Real, kMaxFields> sign;  // parity under reflection along d
+  int n = 0;                             // fields
+  int d = 0;
+  bool node = false;  // node-centred along d
+  int kind[2] = {0, 0};
+  int ghost[2] = {0, 0};  // first ghost index (receive range) per side
+  int send[2] = {0, 0};   // first index of the send range per side
+  int wall[2] = {0, 0};   // the wall: owned layer next to the face (cells) or the face node
+  // A reflective wall node of a field odd under reflection in d (the normal velocity) is zero
+  // (zero_wall[s] set: side s is such a wall and node-centred along d). The zero is written by
+  // the fill kernel and read as zero by the pack kernel and by the mirror, so that a block only
+  // ng cells thick sends the zero and not what the wall node held, whatever the thread order.
+  bool zero_wall[2] = {false, false};
+  int per_field = 0;
+  int lo[3] = {0, 0, 0};  // the slab of every side: whole extent along the other axes
+  int n0 = 0, n1 = 0;     // slab extents along the first two axes (buffer indexing)
+
+  // Field q at (i, j, k) as the sequential order (walls zeroed first) would read it.
+  KOKKOS_INLINE_FUNCTION Real read(int q, int i, int j, int k) const {
+    const int x = d == 0 ? i : d == 1 ? j : k;
+    if (sign[q] < 0)
+      for (int s = 0; s < 2; ++s)
+        if (zero_wall[s] && x == wall[s]) return Real(0);
+    return f[q](i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION int at(int i, int j, int k, int x0) const {
+    // position in a side's slab, the slab's first index along d being x0
+    int idx[3] = {i - lo[0], j - lo[1], k - lo[2]};
+    idx[d] = (d == 0 ? i : d == 1 ? j : k) - x0;
+    return idx[0] + n0 * (idx[1] + n1 * idx[2]);
+  }
 };
 
-std::vector<Batch> batches(const std::vector<HaloField>& fields, int d) {
-  std::vector<Batch> out;
-  for (std::size_t q = 0; q < fields.size(); ++q) {
-    if (q % kBatch == 0) {
-      out.emplace_back();
-      out.back().first = int(q);
-    }
-    Batch& b = out.back();
-    b.f[b.n] = fields[q].view;
-    b.sign[b.n] = Real(fields[q].parity[d]);
-    ++b.n;
-  }
-  return out;
-}
-
-void pack(const Batch& b, const Buffer& buf, const Slab& sl, int per_field) {
-  const int n0 = sl.hi[0] - sl.lo[0], n1 = sl.hi[1] - sl.lo[1];
-  const int l0 = sl.lo[0], l1 = sl.lo[1], l2 = sl.lo[2];
-  Kokkos::parallel_for(
-      "halo::pack", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        const int at = (i - l0) + n0 * ((j - l1) + n1 * (k - l2));
-        for (int q = 0; q < b.n; ++q) buf((b.first + q) * per_field + at) = b.f[q](i, j, k);
-      });
-}
-
-void unpack(const Batch& b, const Buffer& buf, const Slab& sl, int per_field) {
-  const int n0 = sl.hi[0] - sl.lo[0], n1 = sl.hi[1] - sl.lo[1];
-  const int l0 = sl.lo[0], l1 = sl.lo[1], l2 = sl.lo[2];
-  Kokkos::parallel_for(
-      "halo::unpack", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-        const int at = (i - l0) + n0 * ((j - l1) + n1 * (k - l2));
-        for (int q = 0; q < b.n; ++q) b.f[q](i, j, k) = buf((b.first + q) * per_field + at);
-      });
-}
-
-// Reflective: the ghost layer is the mirror image of the interior, times the field's parity
-// (a velocity normal to the wall changes sign; it vanishes on the wall node itself, which
-// zero_wall_node set at the start of the sweep).
-// Outflow: zero gradient, every ghost layer copies the boundary cell or node.
-void apply_boundary(const Mesh& mesh, const HaloField& hf, const std::vector<Batch>& bs, int d,
-                    int side) {
-  // hf: the first field; every field of an exchange shares its layout
+AxisPlan plan_axis(const Mesh& mesh, const std::vector<HaloField>& fields, std::size_t first,
+                   int d) {
+  AxisPlan p;
+  const HaloField& f0 = fields[0];
+  const Centering c = f0.along(d);
+  p.d = d;
+  p.node = c == Centering::Node;
   const int ng = Mesh::ng, nl = mesh.owned_cells(d);
-  const bool node = hf.along(d) == Centering::Node;
-  const BoundaryKind kind = mesh.boundary(d, side);
-  // The wall: the owned layer adjacent to the face (cells) or the face node itself (nodes).
-  const int wall = side == 0 ? ng : (node ? ng + nl : ng + nl - 1);
-  const int dir = side == 0 ? -1 : 1;  // from the wall outwards
-  const int first_ghost = node ? wall + dir : (side == 0 ? ng - 1 : ng + nl);
-  int first = 0, last = 0;
-  recv_range(mesh, hf.along(d), d, side, first, last);
-  const Slab sl = slab(mesh, hf, d, first, last);
-  const bool reflective = kind == BoundaryKind::Reflective;
-  for (const Batch& b : bs)
-    Kokkos::parallel_for(
-        "halo::boundary", sl.policy(), KOKKOS_LAMBDA(int i, int j, int k) {
-          int idx[3] = {i, j, k};
-          const int layer = (idx[d] - first_ghost) * dir;  // 0 next to the wall, 1 beyond
-          int src[3] = {i, j, k};
-          // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
-          // wall value
-          src[d] = reflective ? (node ? wall - dir * (layer + 1) : wall - dir * layer) : wall;
-          for (int q = 0; q < b.n; ++q) {
-            const auto& f = b.f[q];
-            f(i, j, k) =
-                reflective ? b.sign[q] * f(src[0], src[1], src[2]) : f(src[0], src[1], src[2]);
-          }
-        });
+  for (std::size_t q = first; q < fields.size() && p.n < kMaxFields; ++q) {
+    p.f[p.n] = fields[q].view;
+    p.sign[p.n] = Real(fields[q].parity[d]);
+    ++p.n;
+  }
+  bool odd = false;
+  for (int q = 0; q < p.n; ++q) odd = odd || p.sign[q] < 0;
+  for (int s = 0; s < 2; ++s) {
+    p.ghost[s] = recv_first(mesh, c, d, s);
+    p.send[s] = send_first(mesh, c, d, s);
+    p.wall[s] = s == 0 ? ng : (p.node ? ng + nl : ng + nl - 1);
+    if (!mesh.physical_boundary(d, s)) {
+      p.kind[s] = mesh.neighbor(d, s) == mesh.rank() ? AxisPlan::Self : AxisPlan::Neighbour;
+    } else {
+      const BoundaryKind k = mesh.boundary(d, s);
+      if (k == BoundaryKind::Periodic) throw RunError("halo: periodic side without a neighbour");
+      p.kind[s] = k == BoundaryKind::Reflective ? AxisPlan::Reflective : AxisPlan::Outflow;
+    }
+    p.zero_wall[s] = p.node && odd && p.kind[s] == AxisPlan::Reflective;
+  }
+  const Slab sl = slab(mesh, f0, d, p.send[0], p.send[0] + ng);
+  p.per_field = sl.size();
+  for (int a = 0; a < 3; ++a) p.lo[a] = sl.lo[a];
+  p.n0 = sl.hi[0] - sl.lo[0];
+  p.n1 = sl.hi[1] - sl.lo[1];
+  return p;
+}
+
+// The policy over layer numbers t in [0, layers) along d, whole extent along the others.
+Policy3 layer_policy(const Mesh& mesh, const HaloField& f0, int d, int layers) {
+  Slab s = slab(mesh, f0, d, 0, layers);
+  return Policy3({s.lo[0], s.lo[1], s.lo[2]}, {s.hi[0], s.hi[1], s.hi[2]});
+}
+
+// Packs both sides' send slabs of every field in one launch (sides with a neighbour only).
+void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+          const Buffer& b1, int first_field) {
+  const int ng = Mesh::ng;
+  Kokkos::parallel_for(
+      "halo::pack", layer_policy(mesh, f0, p.d, 2 * ng), KOKKOS_LAMBDA(int i, int j, int k) {
+        int idx[3] = {i, j, k};
+        const int t = idx[p.d];
+        const int s = t < ng ? 0 : 1;
+        if (p.kind[s] != AxisPlan::Neighbour) return;
+        idx[p.d] = p.send[s] + t - s * ng;
+        const int at = p.at(idx[0], idx[1], idx[2], p.send[s]);
+        const Buffer& b = s == 0 ? b0 : b1;
+        for (int q = 0; q < p.n; ++q)
+          b((first_field + q) * p.per_field + at) = p.read(q, idx[0], idx[1], idx[2]);
+      });
+}
+
+// Fills every ghost layer of both sides of axis d of every field in one launch: unpacks what a
+// neighbour sent, or applies the physical boundary, and zeroes the reflective wall nodes of
+// odd fields.
+// Reflective: the ghost layer is the mirror image of the interior, times the field's parity
+// (a velocity normal to the wall changes sign; it vanishes on the wall node itself).
+// Outflow: zero gradient, every ghost layer copies the boundary cell or node.
+// Nothing a thread writes is read by another: the mirror reads owned layers along d (never a
+// ghost), and reads a zeroed wall node as the zero it becomes.
+void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+          const Buffer& b1, int first_field) {
+  const int ng = Mesh::ng;
+  const bool walls = p.zero_wall[0] || p.zero_wall[1];
+  Kokkos::parallel_for(
+      "halo::fill", layer_policy(mesh, f0, p.d, 2 * ng + (walls ? 2 : 0)),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        int idx[3] = {i, j, k};
+        const int t = idx[p.d];
+        if (t >= 2 * ng) {  // a wall node
+          const int s = t - 2 * ng;
+          if (!p.zero_wall[s]) return;
+          idx[p.d] = p.wall[s];
+          for (int q = 0; q < p.n; ++q)
+            if (p.sign[q] < 0) p.f[q](idx[0], idx[1], idx[2]) = 0;
+          return;
+        }
+        const int s = t < ng ? 0 : 1;
+        const int x = p.ghost[s] + t - s * ng;
+        idx[p.d] = x;
+        if (p.kind[s] == AxisPlan::Neighbour) {
+          const Buffer& b = s == 0 ? b0 : b1;
+          const int at = p.at(idx[0], idx[1], idx[2], p.ghost[s]);
+          for (int q = 0; q < p.n; ++q)
+            p.f[q](idx[0], idx[1], idx[2]) = b((first_field + q) * p.per_field + at);
+          return;
+        }
+        if (p.kind[s] == AxisPlan::Self) {  // what this block would have sent itself
+          int src[3] = {idx[0], idx[1], idx[2]};
+          src[p.d] = p.send[1 - s] + t - s * ng;
+          for (int q = 0; q < p.n; ++q)
+            p.f[q](idx[0], idx[1], idx[2]) = p.read(q, src[0], src[1], src[2]);
+          return;
+        }
+        const int dir = s == 0 ? -1 : 1;  // from the wall outwards
+        const int first_ghost = p.node ? p.wall[s] + dir : (s == 0 ? ng - 1 : p.wall[s] + 1);
+        const int layer = (x - first_ghost) * dir;  // 0 next to the wall, 1 beyond
+        int src[3] = {idx[0], idx[1], idx[2]};
+        // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
+        // wall value
+        const bool reflective = p.kind[s] == AxisPlan::Reflective;
+        src[p.d] = reflective ? (p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer)
+                              : p.wall[s];
+        for (int q = 0; q < p.n; ++q) {
+          const Real v = p.read(q, src[0], src[1], src[2]);
+          p.f[q](idx[0], idx[1], idx[2]) = reflective ? p.sign[q] * v : v;
+        }
+      });
+}
+
+// The whole exchange in one launch, for a block with no neighbour rank on any side (every side
+// a physical boundary or a periodic axis it holds alone). The three sweeps x, y, z compose into
+// one index map per point: along each axis a ghost index maps to its source (mirror, wall copy
+// or the opposite side) and a factor (the parity for a mirror, else 1); a reflective wall node
+// of a field odd in that axis reads as zero, and the factors of the axes before it are lost
+// (the sweep along that axis wrote +0 there before mirroring). So the value is
+//   (product of the later factors) x (+0)  or  (product of all factors) x f(source),
+// bit for bit what the three sweeps leave (a factor of +-1 is exact, signed zeros included).
+// Sources are owned along every axis and never a zeroed wall, so no thread reads what another
+// writes. Iterates the (i, j) plane with a loop over k: every k in columns that are ghosts or
+// walls along x or y, only the ghost layers and walls along z elsewhere.
+struct Local {
+  Kokkos::Array<AxisPlan, 3> a;
+  int ext[3] = {0, 0, 0};
+  KOKKOS_INLINE_FUNCTION bool ghost(int d, int x, int& s) const {
+    s = x < a[d].ghost[0] + Mesh::ng && x >= a[d].ghost[0] ? 0 : 1;
+    return (x >= a[d].ghost[0] && x < a[d].ghost[0] + Mesh::ng) ||
+           (x >= a[d].ghost[1] && x < a[d].ghost[1] + Mesh::ng);
+  }
+  KOKKOS_INLINE_FUNCTION bool wall(int d, int x) const {
+    return (a[d].zero_wall[0] && x == a[d].wall[0]) || (a[d].zero_wall[1] && x == a[d].wall[1]);
+  }
+  // The source index of x along d and whether it is a mirror (the field's parity applies).
+  KOKKOS_INLINE_FUNCTION int source(int d, int x, bool& ghosted, bool& mirror) const {
+    const AxisPlan& p = a[d];
+    int s = 0;
+    mirror = false;
+    ghosted = ghost(d, x, s);
+    if (!ghosted) return x;
+    if (p.kind[s] == AxisPlan::Self) return p.send[1 - s] + x - p.ghost[s];
+    const int dir = s == 0 ? -1 : 1;
+    const int first_ghost = p.node ? p.wall[s] + dir : (s == 0 ? Mesh::ng - 1 : p.wall[s] + 1);
+    const int layer = (x - first_ghost) * dir;
+    if (p.kind[s] == AxisPlan::Outflow) return p.wall[s];
+    mirror = true;
+    return p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer;
+  }
+  // Field q read at source index src along d is a zeroed wall node.
+  KOKKOS_INLINE_FUNCTION bool zeroed(int d, int src, int q) const {
+    const AxisPlan& p = a[d];
+    return p.sign[q] < 0 &&
+           ((p.zero_wall[0] && src == p.wall[0]) || (p.zero_wall[1] && src == p.wall[1]));
+  }
+  // One column (i, j): the maps of axes x and y once, then the points along z.
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j) const {
+    bool g0, g1, m0, m1;
+    const int s0 = source(0, i, g0, m0), s1 = source(1, j, g1, m1);
+    const bool w01 = wall(0, i) || wall(1, j);
+    const int n = a[0].n;
+    Real fac[kMaxFields];
+    bool zero[kMaxFields];
+    for (int q = 0; q < n; ++q) {
+      Real sgn = 1;
+      bool z = false;
+      if (zeroed(0, s0, q)) z = true, sgn = 1;
+      if (m0) sgn *= a[0].sign[q];
+      if (zeroed(1, s1, q)) z = true, sgn = 1;
+      if (m1) sgn *= a[1].sign[q];
+      fac[q] = sgn;
+      zero[q] = z;
+    }
+    auto point = [&](int k) {
+      bool g2, m2;
+      const int s2 = source(2, k, g2, m2);
+      const bool any = g0 || g1 || g2;
+      if (!any && !w01 && !wall(2, k)) return;
+      for (int q = 0; q < n; ++q) {
+        Real sgn = fac[q];
+        bool z = zero[q];
+        if (zeroed(2, s2, q)) z = true, sgn = 1;
+        if (m2) sgn *= a[2].sign[q];
+        const Field3& f = a[0].f[q];
+        if (z)
+          f(i, j, k) = sgn * Real(0);
+        else if (any)
+          f(i, j, k) = sgn * f(s0, s1, s2);
+      }
+    };
+    if (g0 || g1 || w01) {
+      // the ghosts and walls along z point by point, the owned run between them in one loop
+      // per field (there, no z map: the value is fac x f(s0, s1, k), or fac x 0)
+      const AxisPlan& p = a[2];
+      for (int s = 0; s < 2; ++s)
+        for (int k = p.ghost[s]; k < p.ghost[s] + Mesh::ng; ++k) point(k);
+      int b = Mesh::ng, e = p.ghost[1];
+      if (p.zero_wall[0]) point(b++);  // wall[0] == ng
+      if (p.zero_wall[1]) point(--e);  // wall[1] == ng + nl, the last owned node
+      if (!(g0 || g1)) {
+        for (int k = b; k < e; ++k) point(k);
+        return;
+      }
+      for (int q = 0; q < n; ++q) {
+        const Field3& f = a[0].f[q];
+        const Real c = fac[q];
+        if (zero[q])
+          for (int k = b; k < e; ++k) f(i, j, k) = c * Real(0);
+        else
+          for (int k = b; k < e; ++k) f(i, j, k) = c * f(s0, s1, k);
+      }
+      return;
+    }
+    for (int s = 0; s < 2; ++s)
+      for (int k = a[2].ghost[s]; k < a[2].ghost[s] + Mesh::ng; ++k) point(k);
+    for (int s = 0; s < 2; ++s)
+      if (a[2].zero_wall[s]) point(a[2].wall[s]);
+  }
+};
+
+// The bytes a periodic axis held by one rank copies in place: what its two messages to itself
+// would carry (bytes_sent counts them, so a count does not depend on how the copy is done).
+double self_bytes(const AxisPlan& p, int nfields) {
+  double b = 0;
+  for (int s = 0; s < 2; ++s)
+    if (p.kind[s] == AxisPlan::Self) b += double(nfields) * p.per_field * sizeof(Real);
+  return b;
+}
+
+// True when every side of every axis is filled without a message.
+bool all_local(const Mesh& m) {
+  for (int d = 0; d < 3; ++d)
+    for (int s = 0; s < 2; ++s)
+      if (!m.physical_boundary(d, s) && m.neighbor(d, s) != m.rank()) return false;
+  return true;
 }
 
 MPI_Datatype mpi_real() {
@@ -187,46 +373,48 @@ void Halo::exchange(const std::vector<HaloField>& fields) {
   for (const auto& f : fields)
     if (f.centering != fields[0].centering || f.face_axis != fields[0].face_axis)
       throw RunError("halo: one exchange takes fields of one layout");
+  if (all_local(mesh_) && fields.size() <= std::size_t(kMaxFields)) {
+    Local l;
+    for (int d = 0; d < 3; ++d) {
+      l.a[d] = plan_axis(mesh_, fields, 0, d);
+      l.ext[d] = mesh_.extent(fields[0].along(d), d);
+      bytes_sent_ += self_bytes(l.a[d], int(fields.size()));
+    }
+    Kokkos::parallel_for(
+        "halo::fill",
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {l.ext[0], l.ext[1]}), l);
+    return;
+  }
   for (int d = 0; d < 3; ++d) exchange_axis(fields, d);
 }
 
+// One axis: a pack launch (sides with a neighbour), the messages, then one fill launch for
+// every ghost layer of both sides, walls and physical boundaries included, per kMaxFields
+// fields (exchanges carry two to six).
 void Halo::exchange_axis(const std::vector<HaloField>& fields, int d) {
-  for (int s = 0; s < 2; ++s)
-    for (const auto& f : fields) zero_wall_node(mesh_, f, d, s);
-
   const HaloField& f0 = fields[0];
-  const Centering c = f0.along(d);
   const int nf = static_cast<int>(fields.size());
-  int first = 0, last = 0;
-  send_range(mesh_, c, d, 0, first, last);
-  const int per_field = slab(mesh_, f0, d, first, last).size();
-  const int count = nf * per_field;
-  const std::vector<Batch> bs = batches(fields, d);  // up to kBatch fields per launch
+  std::vector<AxisPlan> plans;
+  for (int q = 0; q < nf; q += kMaxFields) plans.push_back(plan_axis(mesh_, fields, q, d));
+  const int count = nf * plans[0].per_field;
 
-  bool any = false;
+  bool any = false;  // a message to another rank
   for (int s = 0; s < 2; ++s) {
-    if (mesh_.physical_boundary(d, s)) continue;
+    if (mesh_.physical_boundary(d, s) || plans[0].kind[s] == AxisPlan::Self) continue;
     any = true;
     if (static_cast<int>(send_[s].extent(0)) < count) {
       send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "halo::send"), count);
       recv_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "halo::recv"), count);
     }
-    send_range(mesh_, c, d, s, first, last);
-    const Slab sl = slab(mesh_, f0, d, first, last);
-    for (const Batch& b : bs) pack(b, send_[s], sl, per_field);
   }
-
+  bytes_sent_ += self_bytes(plans[0], nf);
   if (any) {
+    for (std::size_t b = 0; b < plans.size(); ++b)
+      pack(mesh_, f0, plans[b], send_[0], send_[1], int(b) * kMaxFields);
     bytes_sent_ += exchange_buffers(mesh_, d, send_, recv_, count, 0);
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      recv_range(mesh_, c, d, s, first, last);
-      const Slab sl = slab(mesh_, f0, d, first, last);
-      for (const Batch& b : bs) unpack(b, recv_[s], sl, per_field);
-    }
   }
-  for (int s = 0; s < 2; ++s)
-    if (mesh_.physical_boundary(d, s)) apply_boundary(mesh_, fields[0], bs, d, s);
+  for (std::size_t b = 0; b < plans.size(); ++b)
+    fill(mesh_, f0, plans[b], recv_[0], recv_[1], int(b) * kMaxFields);
 }
 
 }  // namespace mp

@@ -1,0 +1,160 @@
+// Kernel launches per cycle (issue #15): the single-material cycle at one rank launches an exact,
+// asserted number of kernels, so that a change that adds launches (a halo that goes back to one
+// launch per field and slab, say) fails here rather than as a slower benchmark.
+//
+// Launches are counted through the Kokkos Tools callback interface
+// (Kokkos::Tools::Experimental::set_begin_parallel_{for,reduce,scan}_callback): every
+// parallel_for / parallel_reduce / parallel_scan, including those Kokkos launches itself (a
+// deep_copy of a scalar into a view is a "Kokkos::ViewFill" parallel_for).
+//
+// The counts are exact by construction (nothing in the cycle depends on the data), so the test
+// asserts equality. The halo part: a field exchange on a block with no neighbour rank (every
+// side a reflective/outflow wall or a periodic axis the block holds alone) is one `halo::fill`
+// launch for all its fields, all three axes and the walls (src/mesh/halo.cpp, `Local`); with
+// neighbour ranks it is one pack and one fill launch per axis.
+//   Lagrange: nodes (u, v, w, ub, vb, wb) + cells (rho, e)                   2 exchanges
+//   remap, per split sweep: face fluxes (mass, energy), cells, nodes       3 x 3 exchanges
+//   11 exchanges = 11 `halo::fill` launches at one rank, no `halo::pack`.
+// The other kernels (kernels/hydro, not changed here): 37 launches.
+//   Lagrange: viscosity's q reset (ViewFill), viscosity, acceleration, predictor, corrector,
+//   volume_check, volume_flux_{x,y,z} x 2 (predictor and corrector)            = 12
+//   remap, per sweep: volumes, node_mass, cell_flux, cell_update, dual_face, momentum, ke_fix
+//                                                                               = 21
+//   time step (timestep::cfl), EOS (eos::pressure_sound_speed),
+//   health::cells, health::nodes                                                = 4
+// Before the halo change the same cycle launched 130 kernels: 72 `halo::boundary` and
+// 21 `halo::wall_node` in place of the 11 `halo::fill` (48 in all now).
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <cstdio>
+#include <map>
+#include <string>
+
+#include "support.hpp"
+
+using namespace mp;
+
+namespace {
+
+std::map<std::string, long>& counts() {
+  static std::map<std::string, long> c;
+  return c;
+}
+void on_begin(const char* name, uint32_t, uint64_t* id) {
+  ++counts()[name];
+  *id = 0;
+}
+void on_end(uint64_t) {}
+
+// Counts the launches of whatever runs while it lives, by kernel name.
+struct LaunchCounter {
+  LaunchCounter() {
+    namespace T = Kokkos::Tools::Experimental;
+    counts().clear();
+    T::set_begin_parallel_for_callback(on_begin);
+    T::set_end_parallel_for_callback(on_end);
+    T::set_begin_parallel_reduce_callback(on_begin);
+    T::set_end_parallel_reduce_callback(on_end);
+    T::set_begin_parallel_scan_callback(on_begin);
+    T::set_end_parallel_scan_callback(on_end);
+  }
+  ~LaunchCounter() {
+    namespace T = Kokkos::Tools::Experimental;
+    T::set_begin_parallel_for_callback(nullptr);
+    T::set_end_parallel_for_callback(nullptr);
+    T::set_begin_parallel_reduce_callback(nullptr);
+    T::set_end_parallel_reduce_callback(nullptr);
+    T::set_begin_parallel_scan_callback(nullptr);
+    T::set_end_parallel_scan_callback(nullptr);
+  }
+};
+
+struct Counted {
+  long total = 0, halo_fill = 0, halo_pack = 0, halo_other = 0;
+};
+
+// Launches of one cycle (time step, Lagrange, remap, EOS, viscosity, health check: what
+// bench_hydro times) of `deck` on a 16^3 mesh, after two untimed cycles.
+Counted count_cycle(const std::string& deck, const std::vector<std::string>& extra = {}) {
+  std::vector<std::string> ov = {"mesh.cells=[16,16,16]", "time.end=1e9"};
+  ov.insert(ov.end(), extra.begin(), extra.end());
+  const Scene scene = test::load_scene(deck, ov);
+  RunSettings settings;
+  settings.quiet = true;
+  Simulation sim(scene, MPI_COMM_WORLD, settings);
+  sim.initialize();
+  auto& h = sim.hydro();
+  Real dt_old = 0;
+  double t = 0;
+  Counted c;
+  for (long cycle = 0; cycle < 3; ++cycle) {
+    const bool counted = cycle == 2;
+    std::map<std::string, long> seen;
+    {
+      std::unique_ptr<LaunchCounter> lc;
+      if (counted) lc = std::make_unique<LaunchCounter>();
+      const auto ts = h.time_step(dt_old, t, 1e9);
+      const hydro::Health health = h.step(ts.dt, cycle);
+      EXPECT_TRUE(health.ok) << health.what;
+      t += ts.dt;
+      dt_old = ts.dt;
+      if (counted) seen = counts();
+    }
+    if (!counted) continue;
+    std::printf("%s, 16^3, one cycle at %d rank(s):\n", deck.c_str(), sim.mesh().nranks());
+    for (const auto& [name, n] : seen) {
+      std::printf("  %-32s %ld\n", name.c_str(), n);
+      c.total += n;
+      if (name == "halo::fill")
+        c.halo_fill += n;
+      else if (name == "halo::pack")
+        c.halo_pack += n;
+      else if (name.rfind("halo::", 0) == 0)
+        c.halo_other += n;
+    }
+    std::printf("  total %ld, halo::fill %ld, halo::pack %ld\n", c.total, c.halo_fill, c.halo_pack);
+  }
+  return c;
+}
+
+int world_size() {
+  int n = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+}  // namespace
+
+// Sedov octant: reflective low faces, outflow high faces, every side a physical boundary.
+TEST(Launches, SingleMaterialCycleOneRank) {
+  if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
+  const Counted c = count_cycle("sedov.yaml");
+  EXPECT_EQ(c.halo_fill, 11);  // one per exchange (header comment)
+  EXPECT_EQ(c.halo_pack, 0);   // no neighbour rank
+  EXPECT_EQ(c.halo_other, 0);  // no separate wall-node or boundary launches
+  EXPECT_EQ(c.total, 48);      // 11 + the 37 launches of kernels/hydro
+}
+
+// Periodic on y and z held by one rank: filled in the same one launch, no message and no pack
+// (a rank that is its own neighbour copies the opposite side directly).
+TEST(Launches, PeriodicAxesOneRank) {
+  if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
+  const Counted c = count_cycle("sod_x.yaml");
+  EXPECT_EQ(c.halo_fill, 11);
+  EXPECT_EQ(c.halo_pack, 0);
+  EXPECT_EQ(c.halo_other, 0);
+  EXPECT_EQ(c.total, 48);
+}
+
+// Two ranks (the box split along one axis): an exchange with a neighbour rank is one pack and
+// one fill launch along the split axis and one fill along each other axis (held alone: walls
+// or periodic copies), so 11 x (1 pack + 3 fills).
+TEST(Launches, SingleMaterialCycleTwoRanks) {
+  if (world_size() != 2) GTEST_SKIP() << "a two-rank count";
+  const Counted c = count_cycle("sedov.yaml");
+  EXPECT_EQ(c.halo_fill, 33);
+  EXPECT_EQ(c.halo_pack, 11);
+  EXPECT_EQ(c.halo_other, 0);
+  EXPECT_EQ(c.total, 81);  // 44 + the 37 launches of kernels/hydro
+}
