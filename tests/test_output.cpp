@@ -428,8 +428,8 @@ TEST_F(Output, KilledDuringCheckpointsAlwaysRestartsAndFinishesEqual) {
            std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 20) {
       std::error_code ec;
       for (const auto& e : fs::directory_iterator(dir_ / "killed", ec))
-        writing = writing || holds(e.path().filename().string(), "_checkpoint_") &&
-                                 holds(e.path().filename().string(), ".tmp");
+        writing = writing || (holds(e.path().filename().string(), "_checkpoint_") &&
+                              holds(e.path().filename().string(), ".tmp"));
       if (!writing) std::this_thread::sleep_for(std::chrono::microseconds(200));
     }
     std::this_thread::sleep_for(std::chrono::microseconds(rng() % 2000));
