@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/scene.hpp"
+#include "core/error.hpp"
 #include "driver/simulation.hpp"
 #include "precision.hpp"
 
@@ -20,6 +21,16 @@ inline std::string source_dir() {
 
 inline Scene load_scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return read_scene(Deck::load(source_dir() + "/configs/" + name, overrides));
+}
+
+// The InputError message of loading a deck from configs/ with `overrides`, or "" if it loads.
+inline std::string input_error(const std::string& name, const std::vector<std::string>& overrides) {
+  try {
+    load_scene(name, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 struct Ran {

@@ -94,14 +94,6 @@ TEST(BurnCycle, ClosedTubeConservesTotalEnergy) {
 
 // The burn block is read strictly.
 TEST(BurnCycle, DeckErrorsNameTheKey) {
-  auto error = [](const std::vector<std::string>& o) -> std::string {
-    try {
-      test::load_scene("mader.yaml", o);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
   const struct {
     std::vector<std::string> set;
     const char* expect;
@@ -118,7 +110,7 @@ TEST(BurnCycle, DeckErrorsNameTheKey) {
        "detonators need programmed: true"},
   };
   for (const auto& c : cases) {
-    const std::string msg = error(c.set);
+    const std::string msg = test::input_error("mader.yaml", c.set);
     std::printf("%s -> %s\n", c.set[0].c_str(), msg.c_str());
     EXPECT_NE(msg.find(c.expect), std::string::npos) << c.set[0] << ": " << msg;
   }

@@ -251,15 +251,6 @@ TEST(StrengthCycle, CollisionConservesTotalEnergyToRoundOff) {
 
 // The strength block is read strictly: each bad input names its key.
 TEST(StrengthCycle, DeckErrorsNameTheKey) {
-  const std::string base = "elastic_wave.yaml";
-  auto error = [&](const std::vector<std::string>& o) -> std::string {
-    try {
-      test::load_scene(base, o);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
   const struct {
     std::vector<std::string> set;
     const char* expect;
@@ -275,7 +266,7 @@ TEST(StrengthCycle, DeckErrorsNameTheKey) {
        "not supported yet"},
   };
   for (const auto& c : cases) {
-    const std::string msg = error(c.set);
+    const std::string msg = test::input_error("elastic_wave.yaml", c.set);
     std::printf("%s -> %s\n", c.set[0].c_str(), msg.c_str());
     EXPECT_NE(msg.find(c.expect), std::string::npos) << c.set[0] << ": " << msg;
   }
