@@ -284,15 +284,32 @@ TEST(Extremes, LeBlancStaysPositive) {
               rmin / 1e-3 - 1, emin / 1e-7 - 1, tol);
   EXPECT_GE(rmin, 1e-3 * (1 - tol));
   EXPECT_GE(emin, 1e-7 * (1 - tol));
-  // Exact shock: x = 3 + 6 * 0.8291 = 7.975. Staggered schemes run the LeBlanc shock ahead
-  // at coarse resolution (the contact's internal-energy error); seen here: 0.37 ahead at 360
-  // cells and 0.18 at 720, i.e. first-order convergence. The bound is for 360 cells.
+}
+
+// The LeBlanc shock position against the exact x = 3 + 6 * 0.8291 = 7.975 at t = 6. Staggered
+// schemes run it ahead at coarse resolution (the internal-energy error of the contact pushes
+// it; issue #16: the target of 5 cells at 800 is not met). Verified here: the error falls at
+// first order, 0.37 at 360 cells (15 cells) and 0.18 at 720 (measured 2026-11; the bound on the
+// ratio, 0.7, allows order 0.5) — a single-resolution bound would only pin this code's number.
+TEST(Extremes, LeBlancShockPositionConvergesAtFirstOrder) {
   const double g = 5.0 / 3.0;
   const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
   const double exact_shock = 3 + 6 * rs.right_head_speed();
-  const double x_shock = crossing(p, 0.5 * (1e-3 + rs.rho_star_right()), -1);
-  std::printf("LeBlanc shock at %.3f (exact %.3f)\n", x_shock, exact_shock);
-  EXPECT_NEAR(x_shock, exact_shock, 0.45);
+  double err[2];
+  const int cells[2] = {360, 720};
+  for (int n = 0; n < 2; ++n) {
+    auto r = test::run_scene(
+        test::load_scene("leblanc.yaml", {"mesh.cells=[" + std::to_string(cells[n]) + ",2,2]"}));
+    ASSERT_TRUE(r.result.ok) << r.result.health.what;
+    const Profile p = profile_x(r);
+    const double x_shock = crossing(p, 0.5 * (1e-3 + rs.rho_star_right()), -1);
+    err[n] = x_shock - exact_shock;
+    std::printf("LeBlanc, %d cells: shock at %.4f (exact %.4f), %+.4f = %+.1f cells\n", cells[n],
+                x_shock, exact_shock, err[n], err[n] / (9.0 / cells[n]));
+  }
+  std::printf("LeBlanc shock error ratio 720/360: %.3f (first order: 0.5)\n", err[1] / err[0]);
+  EXPECT_LT(std::abs(err[1]), 0.7 * std::abs(err[0]));
+  EXPECT_GT(err[0], 0);  // ahead, as documented: a sign change would mean a different defect
 }
 
 TEST(Extremes, Problem123StaysPositive) {

@@ -418,7 +418,11 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
   }
 }
 
-TEST(MultiMaterial, WaterAirShockTubeMatchesExactSolution) {
+// The water-air criterion as issue #16 restates it: the star state and the interface against
+// the exact solution, no negative pressure in the air and the interface cells, and pure-water
+// tension bounded by 5 % of the initial water pressure at 200 cells (the exact solution has
+// none; the bound is the criterion, not this scheme's observation of 2.3 %).
+TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
   // Bounds from the runs recorded in docs/numerics.md (2-core VM, 200 cells): equal strain
   // p -0.3 %, u +0.1 %, air e error 66 %, shock +2.4 cells; relaxation p +0.05 %, u +0.1 %,
   // air e error 12 %, shock +0.4 cells. Interface +0.02 cells for both.
@@ -596,10 +600,17 @@ ProductsAir run_products_air(const std::vector<std::string>& overrides) {
 
 }  // namespace
 
-TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
-  const ProductsAir es = run_products_air({"numerics.closure=equal_strain"});
-  const ProductsAir nk =
+// One run of each products-air variant, shared by the verification and the pin below.
+const ProductsAir& products_air(bool ke_fix) {
+  static const ProductsAir on = run_products_air({"numerics.closure=equal_strain"});
+  static const ProductsAir off =
       run_products_air({"numerics.closure=equal_strain", "numerics.ke_fix=false"});
+  return ke_fix ? on : off;
+}
+
+TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
+  const ProductsAir& es = products_air(true);
+  const ProductsAir& nk = products_air(false);
   for (const ProductsAir* w : {&es, &nk}) {
     const char* name = w == &es ? "KE fix on" : "KE fix off";
     EXPECT_TRUE(w->finite) << name;
@@ -609,17 +620,23 @@ TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
     EXPECT_LT(std::abs(w->dm_products), test::roundoff(1e-13)) << name;
     EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-12)) << name;
   }
-  // Star state (observed at 400 cells: KE fix on p +3.3 %, u +2.3 %; off p -5.1 %, u +0.7 %,
+  // Star state (observed at 400 cells: KE fix on p +3.0 %, u +2.2 %; off p -5.1 %, u +0.7 %,
   // its shocked air still short of the plateau for the energy it lost).
   EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.05);
   EXPECT_LT(std::abs(es.u_mean / es.u_star - 1), 0.04);
   EXPECT_LT(std::abs(nk.p_air / nk.p_star - 1), 0.07);
   EXPECT_LT(std::abs(nk.u_mean / nk.u_star - 1), 0.02);
-  // Known defect, bounded here (docs/numerics.md, "Products into air"): the start-up overshoot
-  // of the velocity at the rarefaction tail is damped by the remap, and the KE fix returns that
-  // loss as heat to the expanded products, which over-expand. With the KE fix the interface
-  // runs 7.3 cells ahead and the products' star density is 30 % low; without it 1.7 cells and
-  // 11.5 % (but energy is not conserved). The bounds hold these near their present values.
+}
+
+// A regression pin of a known defect, not a verification (issue #16 open; docs/numerics.md,
+// "Products into air"): the start-up overshoot of the velocity at the rarefaction tail is
+// damped by the remap, and the KE fix returns that loss as heat to the expanded products, which
+// over-expand: with the KE fix the interface runs 7.0 cells ahead and the products' star
+// density is 29.5 % low (exact solution: 0); without it 1.7 cells and 11.5 % (but energy is not
+// conserved). The bounds hold these near their present values so that a change shows.
+TEST(MultiMaterialRegressionPin, ProductsIntoAirOverExpansion) {
+  const ProductsAir& es = products_air(true);
+  const ProductsAir& nk = products_air(false);
   EXPECT_LT(std::abs(es.interface - es.contact), 9 * es.dx);
   EXPECT_LT(std::abs(nk.interface - nk.contact), 3 * nk.dx);
   EXPECT_LT(std::abs(es.rho_products / es.rho_star - 1), 0.35);
@@ -840,11 +857,20 @@ TEST(MultiMaterial, RelaxationEqualisesMixedCellPressuresInOneCycle) {
     // float: water's pressure resolution eps rho c^2 = 3.1e-9 Mbar against P* = 2e-6 Mbar
     // (observed 3.9e-4)
     EXPECT_LT(rx.spread, test::by_precision(1e-9, 2e-3)) << layout;
-    // a regression pin: the end state of the relaxation depends on its path (work at P*); the
-    // point test of relax.hpp lands on the same 0.6893
-    EXPECT_NEAR(rx.alpha_min, 0.6893, 1e-3) << layout;
     EXPECT_EQ(rx.alpha_min, rx.alpha_max) << layout;  // every cell alike
     EXPECT_LT(std::abs(rx.mass_change), test::roundoff(1e-14)) << layout;
     EXPECT_LT(std::abs(rx.energy_change), test::roundoff(1e-13)) << layout;
+  }
+}
+
+// A regression pin, not a verification: the end state of the relaxation depends on its path
+// (the work is charged at P*, a dissipative closure; docs/numerics.md), so the water fraction
+// after one cycle, 0.6893, is this code's own number (the point test of relax.hpp lands on the
+// same value); a change of the closure moves it.
+TEST(MultiMaterialRegressionPin, RelaxationEndStateAfterOneCycle) {
+  for (const std::string layout : {"compact", "dense"}) {
+    const Closure rx = one_cycle_closure(layout, "relaxation");
+    std::printf("relaxation end state, %s: water fraction %.6f\n", layout.c_str(), rx.alpha_min);
+    EXPECT_NEAR(rx.alpha_min, 0.6893, 1e-3) << layout;
   }
 }
