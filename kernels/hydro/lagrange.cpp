@@ -3,6 +3,7 @@
 // so the work done on the nodes equals the p dV work taken from the cells.
 #include "core/error.hpp"
 #include "core/math.hpp"
+#include "core/profiling.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
 
@@ -272,11 +273,22 @@ Health Hydro::lagrange(Real dt) {
 }
 
 Health Hydro::step(Real dt, long cycle) {
-  Health h = lagrange(dt);
+  Health h;
+  {
+    ProfileRegion r("hydro::lagrange");
+    h = lagrange(dt);
+  }
   if (!h.ok) return h;
-  remap(cycle);
-  equation_of_state(s_.rho, s_.e, s_.p, s_.c);
-  viscosity();
+  {
+    ProfileRegion r("hydro::remap");
+    remap(cycle);
+  }
+  {
+    ProfileRegion r("hydro::eos_viscosity");
+    equation_of_state(s_.rho, s_.e, s_.p, s_.c);
+    viscosity();
+  }
+  ProfileRegion r("hydro::health");
   return check();
 }
 

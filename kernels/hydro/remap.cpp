@@ -6,6 +6,7 @@
 //   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
 //            permutations of the axes; stable for a Courant-number sum below one).
 #include "core/math.hpp"
+#include "core/profiling.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
 
@@ -81,6 +82,10 @@ void Hydro::remap(long cycle) {
 }
 
 void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending) {
+  ProfileRegion region(axes[0] && axes[1] && axes[2] ? "remap::unsplit"
+                       : axes[0]                     ? "remap::sweep_x"
+                       : axes[1]                     ? "remap::sweep_y"
+                                                     : "remap::sweep_z");
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
   const int ord = opt_.order;

@@ -16,6 +16,7 @@
 
 #include "core/error.hpp"
 #include "core/math.hpp"
+#include "core/profiling.hpp"
 #include "driver/signals.hpp"
 #include "io/checkpoint.hpp"
 #include "io/h5_util.hpp"
@@ -475,6 +476,7 @@ const char* ending_text(Ending e) {
 }
 
 std::string Simulation::write_dump(double t, long cycle) {
+  ProfileRegion region("output::dump");
   if (!writer_) return "";
   auto fields = hydro_->output_fields();
   if (const mat::MaterialState* mm = hydro_->materials())
@@ -602,6 +604,7 @@ std::string Simulation::checkpoint_meta() const {
 }
 
 std::string Simulation::write_checkpoint_now() {
+  ProfileRegion region("output::checkpoint");
   const std::string path = checkpoint_path(settings_.output_dir, scene_.output.basename, cycle_);
   write_checkpoint(*mesh_, path, checkpoint_fields(), checkpoint_meta());
   // Keep the newest checkpoint_keep complete checkpoints.

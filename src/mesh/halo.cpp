@@ -1,6 +1,7 @@
 #include "mesh/halo.hpp"
 
 #include "core/error.hpp"
+#include "core/profiling.hpp"
 
 namespace mp {
 
@@ -370,6 +371,7 @@ Halo::Halo(const Mesh& mesh) : mesh_(mesh) {}
 
 void Halo::exchange(const std::vector<HaloField>& fields) {
   if (fields.empty()) return;
+  ProfileRegion region("halo::exchange");
   for (const auto& f : fields)
     if (f.centering != fields[0].centering || f.face_axis != fields[0].face_axis)
       throw RunError("halo: one exchange takes fields of one layout");
