@@ -148,6 +148,19 @@ TEST_F(Output, FinalDumpSummaryAndXdmfMatchTheRun) {
               summary["files"].size());
   EXPECT_EQ(grids, static_cast<int>(summary["files"].size()));
   EXPECT_EQ(grids, 2);  // first and last (output.interval 0)
+  // the velocity also as one vector, joined from its three datasets, once per grid
+  const std::regex vec(
+      R"re(<Attribute Name="velocity" AttributeType="Vector" Center="Node">\s*<DataItem ItemType="Function" Function="JOIN\(\$0, \$1, \$2\)" Dimensions="(\d+) (\d+) (\d+) 3">\s*<DataItem[^>]*>([^<]*):/velocity_x</DataItem>\s*<DataItem[^>]*>([^<]*):/velocity_y</DataItem>\s*<DataItem[^>]*>([^<]*):/velocity_z</DataItem>)re");
+  int vectors = 0;
+  for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), vec); it != std::sregex_iterator();
+       ++it) {
+    ++vectors;
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(std::stoi((*it)[3 - d]), spec.cells[d] + 1);
+    EXPECT_EQ((*it)[4], (*it)[5]);
+    EXPECT_EQ((*it)[4], (*it)[6]);
+  }
+  std::printf("  xdmf: %d velocity vector attributes\n", vectors);
+  EXPECT_EQ(vectors, grids);
 }
 
 // summary.json stays JSON whatever the numbers: NaN and infinities become null, each listed by

@@ -181,6 +181,25 @@ void Hdf5Writer::write_xdmf() const {
          << xml_escape(d.file) << ":/" << xml_escape(f.first) << "</DataItem>\n"
          << "        </Attribute>\n";
     }
+    // The node velocity also as one vector (ParaView / VisIt glyphs and stream lines), joined
+    // from the three component datasets by an XDMF function: no data written twice.
+    const auto has = [&](const std::string& n) {
+      for (const auto& f : d.fields)
+        if (f.first == n && f.second == Centering::Node) return true;
+      return false;
+    };
+    if (has("velocity_x") && has("velocity_y") && has("velocity_z")) {
+      os << "        <Attribute Name=\"velocity\" AttributeType=\"Vector\" Center=\"Node\">\n"
+         << "          <DataItem ItemType=\"Function\" Function=\"JOIN($0, $1, $2)\" "
+            "Dimensions=\""
+         << dims_string(nodes) << " 3\">\n";
+      for (const char* c : {"velocity_x", "velocity_y", "velocity_z"})
+        os << "            <DataItem Dimensions=\"" << dims_string(nodes)
+           << "\" NumberType=\"Float\" Precision=\"" << precision << "\" Format=\"HDF\">"
+           << xml_escape(d.file) << ":/" << c << "</DataItem>\n";
+      os << "          </DataItem>\n"
+         << "        </Attribute>\n";
+    }
     os << "      </Grid>\n";
   }
   os << "    </Grid>\n"
