@@ -5,39 +5,17 @@
 #include <cmath>
 #include <cstdio>
 
+#include "exact/norms.hpp"
 #include "support.hpp"
 
 using namespace mp;
 
 namespace {
 
-// Largest radius of a cell centre where density exceeds `level` (the outermost shocked cell),
-// interpolated linearly along rays of cells; here taken as the spherically averaged crossing
-// of `level` by the density binned in radius.
+// The spherically averaged crossing of `level` by the density binned in radius (shared with
+// the speed/accuracy harness: tests/exact/norms.hpp).
 double shock_radius(const Mesh& m, const std::vector<double>& rho, double level) {
-  const int n = m.global_cells(0);
-  const double h = m.dx(0);
-  std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double r =
-            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
-        const int b = static_cast<int>(r / (0.5 * h));
-        if (b < 2 * n) {
-          sum[b] += rho[i + n * (j + n * k)];
-          cnt[b] += 1;
-        }
-      }
-  for (int b = 2 * n - 2; b > 0; --b) {
-    if (cnt[b] == 0 || cnt[b + 1] == 0) continue;
-    const double a0 = sum[b] / cnt[b], a1 = sum[b + 1] / cnt[b + 1];
-    if (a0 >= level && a1 < level) {
-      const double r0 = (b + 0.5) * 0.5 * h, r1 = (b + 1.5) * 0.5 * h;
-      return r0 + (level - a0) / (a1 - a0) * (r1 - r0);
-    }
-  }
-  return NAN;
+  return exact::octant_shock_radius(rho, m.global_cells(0), m.dx(0), level);
 }
 
 // Largest difference between the density and its images under the three axis swaps, relative

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "exact/mader.hpp"
+#include "exact/norms.hpp"
 #include "support.hpp"
 
 using namespace mp;
@@ -34,13 +35,18 @@ MaderRun run_mader(int n) {
   const double pcj = ex.p_cj();
   // the front: the last crossing of p_cj / 4 (the constant-volume explosion pressure of a
   // gamma = 3 explosive is p_cj / 2, reached by the burn alone, so that level is not used)
+  std::vector<double> x(n), pl(n);
+  for (int i = 0; i < n; ++i) {
+    x[i] = (i + 0.5) * out.dx;
+    pl[i] = p[i];
+  }
   for (int i = 0; i + 1 < n; ++i) {
     const double a = p[i], b = p[i + 1];
     if (a > 0.25 * pcj && b <= 0.25 * pcj)
       out.front = (i + 0.5 + (0.25 * pcj - a) / (b - a)) * out.dx;
     out.peak = std::max(out.peak, a);
-    out.l1 += std::abs(a - ex.sample((i + 0.5) * out.dx, out.t).p) * out.dx;
   }
+  out.l1 = exact::l1_pressure(x, pl, out.dx, ex, out.t);
   return out;
 }
 

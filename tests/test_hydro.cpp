@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "exact/norms.hpp"
 #include "exact/riemann.hpp"
 #include "support.hpp"
 
@@ -39,10 +40,7 @@ Profile profile_x(const test::Ran& r) {
 }
 
 double l1_sod(const Profile& p, const exact::Riemann& rs, double x0, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < p.x.size(); ++i)
-    err += std::abs(p.rho[i] - rs.sample((p.x[i] - x0) / t).rho) * p.dx;
-  return err;
+  return exact::l1_density(p.x, p.rho, p.dx, rs, x0, t);
 }
 
 // First x, scanning from `from` in direction `dir`, where rho crosses `level`.

@@ -1,0 +1,56 @@
+// Error measures against the exact solutions, shared by the tests and the speed/accuracy
+// harness (perf/tradeoff.cpp), so that both report the same numbers.
+#pragma once
+#include <cmath>
+#include <vector>
+
+#include "exact/mader.hpp"
+#include "exact/riemann.hpp"
+
+namespace mp::exact {
+
+// L1 norm of the density error of a 1-D profile (cell centres x, spacing dx) against a Riemann
+// problem with its diaphragm at x0, at time t.
+inline double l1_density(const std::vector<double>& x, const std::vector<double>& rho, double dx,
+                         const Riemann& rs, double x0, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    err += std::abs(rho[i] - rs.sample((x[i] - x0) / t).rho) * dx;
+  return err;
+}
+
+// L1 norm of the pressure error of a 1-D profile against the Mader solution at time t.
+inline double l1_pressure(const std::vector<double>& x, const std::vector<double>& p, double dx,
+                          const Mader& m, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) err += std::abs(p[i] - m.sample(x[i], t).p) * dx;
+  return err;
+}
+
+// The spherically averaged radius where a 3-D octant's density (n^3 cells of size h from the
+// origin, x fastest) falls through `level` from inside, or NaN.
+inline double octant_shock_radius(const std::vector<double>& rho, int n, double h, double level) {
+  std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double r =
+            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+        const int b = static_cast<int>(r / (0.5 * h));
+        if (b < 2 * n) {
+          sum[b] += rho[i + n * (j + n * k)];
+          cnt[b] += 1;
+        }
+      }
+  for (int b = 2 * n - 2; b > 0; --b) {
+    if (cnt[b] == 0 || cnt[b + 1] == 0) continue;
+    const double a0 = sum[b] / cnt[b], a1 = sum[b + 1] / cnt[b + 1];
+    if (a0 >= level && a1 < level) {
+      const double r0 = (b + 0.5) * 0.5 * h, r1 = (b + 1.5) * 0.5 * h;
+      return r0 + (level - a0) / (a1 - a0) * (r1 - r0);
+    }
+  }
+  return NAN;
+}
+
+}  // namespace mp::exact
