@@ -121,6 +121,10 @@ double memory_estimate(const Mesh& mesh, const Scene& s) {
   const int nmat = static_cast<int>(s.materials.size());
   double reals = 8 * ec + 15 * en;  // rho e p c q p_half pre/post_vol; nodes and face fluxes
   if (nmat == 1) reals += 6 * en;   // single-material mass and energy face fluxes
+  // the modules' fields (kernels/strength/module.hpp, kernels/burn/module.hpp)
+  if (nmat == 1 && !s.materials[0].strength.model.empty())
+    reals += 14 * ec + 3 * en;  // s, s_half (6 each), plastic strain, scratch; nodal forces
+  if (nmat == 1 && s.materials[0].burn.on) reals += 3 * ec;  // F, lighting time, scratch
   double ints = 0;
   if (nmat > 1) {
     if (s.numerics.layout == "dense") {
