@@ -4,8 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "exact/mader.hpp"
-#include "exact/riemann.hpp"
+#include "mader.hpp"
+#include "riemann.hpp"
 
 namespace mp::exact {
 
