@@ -124,6 +124,7 @@ TEST(Geometry, FractionsAreExactWhereTheCellIsInsideOrOutside) {
   EXPECT_EQ(geom::sampled_fraction(s, outside, h, 5), 0.0);
   const double edge[3] = {0.78, 0.475, 0.475};  // straddles x = 0.8
   const double f = geom::sampled_fraction(s, edge, h, 8);
+  std::printf("fraction of the cell straddling the sphere's surface (8^3 samples): %.6f\n", f);
   EXPECT_GT(f, 0.0);
   EXPECT_LT(f, 1.0);
 }
