@@ -91,13 +91,28 @@ TEST(Geometry, SampledVolumesConvergeToAnalytic) {
   for (const auto& c : cases) {
     const double coarse = std::abs(sampled_volume(c.shape, 1.0, 24, 1) / c.exact - 1);
     const double fine = std::abs(sampled_volume(c.shape, 1.0, 24, 8) / c.exact - 1);
-    std::printf("%-32s exact %.6f  relative error: 1 sample %.2e, 8^3 samples %.2e\n", c.name,
-                c.exact, coarse, fine);
-    EXPECT_LT(fine, 2e-3) << c.name;
+    std::printf("%-32s exact %.6f  relative error: 1 sample %.2e, 8^3 samples %.2e (ratio %.1f)\n",
+                c.name, c.exact, coarse, fine, coarse / fine);
     if (std::string(c.name) == "box") {
+      // Sampling is exact for the box; what is left is the round-off of summing 24^3 cell
+      // volumes in double: at most N eps = 13824 x 1.1e-16 = 1.5e-12 if every rounding had one
+      // sign, about sqrt(N) eps = 1.3e-14 for roundings of random sign (observed 1.9e-14 with
+      // both sample counts). The geometry is in double whatever Real is.
       EXPECT_LT(fine, 1e-12);
+      EXPECT_LT(coarse, 1e-12);
+      continue;
     }
-    EXPECT_LT(fine, coarse + 1e-12) << c.name;
+    // Accuracy target of the 8^3 sampling at 24 cells, one bound for every curved shape: the
+    // tube, whose inner and outer cylinders both err, sets it (observed 1.63e-3, 1.23x below);
+    // the others lie 2.4x (two spheres) to 38x (cone) below it, because a lattice count's
+    // error has no smooth dependence on the shape (Gauss's circle problem) and so no per-shape
+    // theory to tighten with; the rate check below holds each shape to its own 1-sample error.
+    EXPECT_LT(fine, 2e-3) << c.name;
+    // Rate: the sub-cells the surface cuts, the only ones in error, lie in a shell 8x thinner
+    // with 8^3 samples than with 1, so the worst-case error falls 8-fold; errors of mixed sign
+    // cancel further (observed ratios 10.4 frustum to 259 shell). The bound, 4, leaves a factor
+    // 2 below the worst case for the count's fluctuation.
+    EXPECT_LT(fine, coarse / 4) << c.name;
   }
 }
 
@@ -109,6 +124,7 @@ TEST(Geometry, FractionsAreExactWhereTheCellIsInsideOrOutside) {
   EXPECT_EQ(geom::sampled_fraction(s, outside, h, 5), 0.0);
   const double edge[3] = {0.78, 0.475, 0.475};  // straddles x = 0.8
   const double f = geom::sampled_fraction(s, edge, h, 8);
+  std::printf("fraction of the cell straddling the sphere's surface (8^3 samples): %.6f\n", f);
   EXPECT_GT(f, 0.0);
   EXPECT_LT(f, 1.0);
 }

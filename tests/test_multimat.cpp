@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "config/deck.hpp"
 #include "exact/isentrope_riemann.hpp"
@@ -64,9 +66,11 @@ void expect_layouts_agree(const std::string& deck, const std::vector<std::string
     }
     const double rel = scale > 0 ? diff / scale : diff;
     worst = std::max(worst, rel);
-    // Both layouts run the same point functions in the same order; only a compiler contracting
-    // differently in the two kernels could leave round-off.
-    EXPECT_LE(rel, 1e-13) << deck << ": field " << c.names[f];
+    // Both layouts run the same point functions in the same order on the same values, so they
+    // agree bit for bit (observed 0 on every scene in double; docs/numerics.md records the same
+    // in float). Was
+    // 1e-13, which could not see a difference of round-off.
+    EXPECT_EQ(rel, 0.0) << deck << ": field " << c.names[f];
   }
   std::printf(
       "%s: dense vs compact, %zu fields over %ld cycles, largest relative difference %.3e\n",
@@ -98,16 +102,25 @@ TEST(MultiMaterial, TwoMaterialSodMatchesExactSolution) {
   const double contact = x0 + rs.u_star() * t;
   // the driver fills [0, interface): its volume per unit area is the interface position
   const double interface = driver_volume;
-  std::printf(
-      "two-material Sod (gamma 1.4 | 1.667), %d cells: L1(rho) %.4e, L1(p) %.4e; interface "
-      "%.5f vs exact contact %.5f (%.2f cells); p* %.5f u* %.5f\n",
-      nx, l1, l1p, interface, contact, (interface - contact) / dx, rs.p_star(), rs.u_star());
-  EXPECT_LT(l1, 4.0e-3);  // single-material Sod at 200 cells: 2.8e-3
-  EXPECT_LT(l1p, 3.0e-3);
-  EXPECT_LT(std::abs(interface - contact), 2 * dx);
-  // the interface stays sharp: at most 2 mixed cells
   int mixed = 0;
   for (int i = 0; i < nx; ++i) mixed += (frac[i] > 0 && frac[i] < 1) ? 1 : 0;
+  std::printf(
+      "two-material Sod (gamma 1.4 | 1.667), %d cells: L1(rho) %.4e, L1(p) %.4e; interface "
+      "%.5f vs exact contact %.5f (%.2f cells); %d mixed cells; p* %.5f u* %.5f\n",
+      nx, l1, l1p, interface, contact, (interface - contact) / dx, mixed, rs.p_star(), rs.u_star());
+  // The L1 bounds are the single-material scheme's error at this resolution, whose convergence
+  // Sod.ConvergesToExactSolution verifies (2.9e-3 at 200 cells, the geometric mean of its 5.40e-3
+  // at 100 and 1.53e-3 at 400), with 40 % for the second material: a mixed-cell closure that added
+  // error of the size of the scheme's own would fail. Observed 1.89e-3 (rho, 2.1x below) and
+  // 2.05e-3 (p, 1.46x below).
+  EXPECT_LT(l1, 4.0e-3);
+  EXPECT_LT(l1p, 3.0e-3);
+  // Interface at the exact contact: observed -0.05 cells. A quarter cell (5x) is a contact
+  // speed error of 0.25 dx / t = 0.7 % of u*, the size of the star-state bounds of the
+  // water-air test; was 2 cells (40x the observation, a speed error of 5.5 %).
+  EXPECT_LT(std::abs(interface - contact), 0.25 * dx);
+  // the interface stays sharp: a plane between two cells is at most one mixed cell, two while
+  // it crosses a face in a step (observed count printed)
   EXPECT_LE(mixed, 2);
 }
 
@@ -137,9 +150,18 @@ TEST(MultiMaterial, SphereAdvectionYoungsBeatsSlicAndConverges) {
       v0 += f0[i] * cell;
       v1 += f1[i] * cell;
     }
-    EXPECT_NEAR(v1, v0, test::roundoff(1e-13)) << "ball volume conserved";
     const auto& mm0 = r.result.start.material_mass;
     const auto& mm1 = r.result.end.material_mass;
+    std::printf("sphere advection %d^3 %s: ball volume change %.2e, material mass changes", n,
+                iface.c_str(), v1 - v0);
+    for (std::size_t q = 0; q < mm0.size(); ++q) std::printf(" %.2e", mm1[q] / mm0[q] - 1);
+    std::printf("\n");
+    // Volume and masses to round-off: the remap moves each material's volume between cells
+    // and only rounds it. The ball's volume (0.03) is summed here over up to 32^3 cells:
+    // N eps x 0.03 = 1.1e-13 at worst (observed up to 1.2e-15, roundings of mixed sign and
+    // of a thread-count-dependent order). The masses change by up to 3.3e-14 (observed, with
+    // fraction-weighted fluxes; 6e-15 with Youngs), 3x below the bound.
+    EXPECT_NEAR(v1, v0, test::roundoff(1e-13)) << "ball volume conserved";
     for (std::size_t q = 0; q < mm0.size(); ++q)
       EXPECT_NEAR(mm1[q] / mm0[q], 1.0, test::roundoff(1e-13));
     return err / v0;  // relative to the sphere's volume
@@ -150,20 +172,41 @@ TEST(MultiMaterial, SphereAdvectionYoungsBeatsSlicAndConverges) {
       "sphere advection, one period, L1 shape error / sphere volume: Youngs 16^3 %.4f, 32^3 "
       "%.4f (order %.2f); SLIC 16^3 %.4f; no reconstruction 16^3 %.4f\n",
       y16, y32, std::log2(y16 / y32), s16, n16);
+  // Accuracy at 32^3 (observed 0.0101, 1.98x below): the bound is the 16^3 error, 0.0153,
+  // at the observed order 0.6 and then some; the verification is the trend below.
   EXPECT_LT(y32, 0.02);
-  EXPECT_LT(y32, 0.8 * y16);  // falls with resolution (observed 0.66: order 0.6)
-  EXPECT_LT(y16, 0.8 * s16);  // Youngs clearly better than SLIC
-  EXPECT_LT(s16, n16);        // and SLIC better than fraction-weighted fluxes
+  // Falls with resolution: observed ratio 0.66 (order 0.6), within 15 % of the bound 0.8
+  // because the L1 shape error of a moving interface converges slowly at these resolutions
+  // (the sphere is 5 to 10 cells across); 0.8 is order 0.32, the least that still says the
+  // error falls by more than round-off or noise.
+  EXPECT_LT(y32, 0.8 * y16);
+  // Youngs (piecewise-planar, exact for a plane) against SLIC (axis-aligned planes, an O(1)
+  // error in every interface cell): observed ratio 0.067; the bound 0.2 (3x) says Youngs is
+  // several times better, as the plane-exact reconstruction should be; was 0.8 (12x).
+  EXPECT_LT(y16, 0.2 * s16);
+  // and SLIC better than fraction-weighted fluxes, which smear the interface every step
+  // (observed ratio 0.28; the bound is only the ordering)
+  EXPECT_LT(s16, n16);
 }
 
 TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
   const Scene scene = test::load_scene("triple_point.yaml");
   auto r = test::run_scene(scene);
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
+  // The step the end time limits sets t = t_end exactly (Simulation::run; observed 0); the
+  // loop would also stop on a sum of steps within 1e-12 t_end (3e-12) of it, which this bound
+  // (1e-12) would flag as the end step going missing.
   EXPECT_NEAR(r.result.time, 3.0, 1e-12);
   const auto& a = r.result.start.material_mass;
   const auto& b = r.result.end.material_mass;
   ASSERT_EQ(a.size(), 3u);
+  std::printf("triple point: end time - 3 = %.2e; initial masses - exact: %.2e %.2e %.2e\n",
+              r.result.time - 3.0, a[0] - 0.3, a[1] - 0.9, a[2] - 0.1125);
+  // The initial masses are sums over 4200 cells: N eps = 4.7e-13 of the mass if every
+  // rounding had one sign, sqrt(N) eps = 7e-15 for roundings of mixed sign. The reduction's
+  // order depends on the thread count: observed 2e-16 to 5.6e-16 with one count, up to 4.4e-14
+  // (heavy, 0.9) with another, so the bound, 1e-13 (2.3x), lies between the typical and the
+  // worst case.
   // exact initial masses: driver 1 x 3 x 0.1 x 1.0, heavy 6 x 1.5 x 0.1 x 1.0, light 6 x 1.5 x 0.1
   // x 0.125
   EXPECT_NEAR(a[0], 0.3, test::roundoff(1e-13));
@@ -184,7 +227,8 @@ TEST(MultiMaterial, TriplePointConservesEveryMaterialsMass) {
       "energy change %.2e\n",
       r.result.cycles, r.result.time, worst, de);
   // Closed box, KE fix returning the remap's whole discrepancy: round-off only
-  // (test::energy_roundoff: 9.9e-13 for 186 cycles; observed -4.6e-14). Until 2026-11 the fix
+  // (test::energy_roundoff: 9.9e-13 for 186 cycles, the worst case of roundings of one sign;
+  // observed -1.5e-14 to -4.6e-14, roundings of mixed sign cancel). Until 2026-11 the fix
   // returned only dissipation: +2.6e-4.
   EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
 }
@@ -348,7 +392,7 @@ WaterAir run_water_air(const std::vector<std::string>& overrides) {
 // that a multi-material scene runs the mixed-cell kernels; `single` drops it.
 struct Spall {
   double p_min, rho_min, dm, de;
-  long at_cutoff;
+  long at_cutoff, cycles;
 };
 
 Spall run_spall(bool single, const std::string& p_min) {
@@ -376,7 +420,7 @@ Spall run_spall(bool single, const std::string& p_min) {
   const Mesh& m = r.sim->mesh();
   const auto p = test::gather(m, r.sim->hydro().state().p, Centering::Cell);
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
-  Spall sp{1e300, 1e300, 0, 0, 0};
+  Spall sp{1e300, 1e300, 0, 0, 0, r.result.cycles};
   // the cutoff as the fields hold it (-5e-4 is -5.00000024e-4 in float)
   const double cut = p_min.empty() ? -1e300 : double(Real(std::stod(p_min)));
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -398,22 +442,31 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
   for (bool single : {true, false}) {
     const Spall raw = run_spall(single, "");
     const Spall cut = run_spall(single, "-5.0e-4");
-    // Without a cutoff the EOS carries the tension (about -1.6e-3 Mbar, acoustic estimate).
+    // Without a cutoff the EOS carries the tension: acoustic estimate rho c du = 1.6e-3 Mbar
+    // (observed -1.49e-3 single, -1.62e-3 with air); the bound asks for 2/3 of it.
     EXPECT_LT(raw.p_min, -1e-3);
     // With one, no cell goes below p_min and the middle sits at it (4 cells across y, z at
     // least), so the cutoff is what holds the pressure there.
     EXPECT_GE(cut.p_min, double(Real(-5e-4)));
     EXPECT_GE(cut.at_cutoff, 4);
     // The water that cannot carry the tension opens up (cavitates) in the middle: the cutoff
-    // changes the motion, not only the pressure written out (observed 0.779 with the cutoff,
-    // 0.931-0.936 without).
+    // changes the motion, not only the pressure written out. Without it the water stretches
+    // elastically by |p| / (rho c^2) = 1.6e-3 / 2.64e-2 = 6 %, rho = 0.94 (observed 0.931 to
+    // 0.936); with it, it opens (observed 0.779). The two bounds separate the outcomes and lie
+    // within 15 % of the observations because they sit between them: 0.9 allows for the
+    // stiffened gas's nonlinearity below the acoustic 0.94; 0.85 is 10 % below it, more than
+    // elastic stretching alone can reach.
     EXPECT_LT(cut.rho_min, 0.85);
     EXPECT_GT(raw.rho_min, 0.9);
-    // Mass to round-off; the cutoff pressure does the p dV work, so total energy keeps the
-    // same balance as without it (observed 2e-7 to 1.4e-6).
+    // Mass to round-off: a rounding per cell in each of 3 remap sweeps of 122 cycles, 3 x 122
+    // x 2.2e-16 = 8e-14 if all of one sign (observed 2.4e-15 to 8.7e-15). The cutoff pressure
+    // does the p dV work, and the KE fix returns the remap's discrepancy, so total energy is
+    // conserved to round-off in this closed box (test::energy_roundoff, 6.5e-13 for 122
+    // cycles; observed 1.7e-15 to 6.8e-15). Was 1e-5, from before the KE fix returned the
+    // whole discrepancy (then 2e-7 to 1.4e-6).
     for (const Spall* s : {&raw, &cut}) {
       EXPECT_LT(std::abs(s->dm), test::roundoff(1e-13));
-      EXPECT_LT(std::abs(s->de), 1e-5);
+      EXPECT_LT(std::abs(s->de), test::energy_roundoff(s->cycles));
     }
   }
 }
@@ -423,9 +476,11 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
 // tension bounded by 5 % of the initial water pressure at 200 cells (the exact solution has
 // none; the bound is the criterion, not this scheme's observation of 2.3 %).
 TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
-  // Bounds from the runs recorded in docs/numerics.md (2-core VM, 200 cells): equal strain
-  // p -0.3 %, u +0.1 %, air e error 66 %, shock +2.4 cells; relaxation p +0.05 %, u +0.1 %,
-  // air e error 12 %, shock +0.4 cells. Interface +0.02 cells for both.
+  // Observed at 200 cells (double): equal strain p -0.25 %, u +0.11 %, air e error 62 %,
+  // shock +2.35 cells, interface +0.02 cells; relaxation p +0.08 %, u +0.09 %, air e error
+  // 11 %, shock +0.46 cells, interface +0.03 cells; 1 mixed cell each. No exact-solution trend
+  // is run here (two resolutions cost 2 x 5 min on 2 cores): the star-state bounds are the
+  // accuracy issue #16 records for this problem (p*, u* within 0.3 %), with margin.
   const WaterAir es = run_water_air({"numerics.closure=equal_strain"});
   const WaterAir rx = run_water_air({"numerics.closure=relaxation"});
   for (const WaterAir* w : {&es, &rx}) {
@@ -446,12 +501,24 @@ TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
     // schemes undershoot here too, by less (tools/water_air_godunov.py: -2.3e-5 first order,
     // -7.1e-6 MUSCL-Hancock at 200 cells, against p* = 4.8e-6).
     EXPECT_GT(w->p_water_min, -0.05 * 1e-2) << name;
-    EXPECT_LT(std::abs(w->interface - w->contact), 2 * w->dx) << name;
-    EXPECT_LT(std::abs(w->p_air / w->p_star - 1), 0.01) << name;
-    EXPECT_LT(std::abs(w->u_mean / w->u_star - 1), 0.01) << name;
+    // Interface at the exact contact: 0.15 cells (5x the larger observation) is a contact
+    // speed error of 0.15 dx / (u* t) = 0.64 %, within the star-speed bound; was 2 cells
+    // (67-100x the observations, a speed error of 8.5 %).
+    EXPECT_LT(std::abs(w->interface - w->contact), 0.15 * w->dx) << name;
+    // Star velocity: 0.4 % (#16's 0.3 % with a third for margin; observed +0.11 %, +0.09 %).
+    // Was 1 % (9x, 11x).
+    EXPECT_LT(std::abs(w->u_mean / w->u_star - 1), 0.004) << name;
   }
+  // Shocked-air pressure: equal strain 1 % (observed -0.25 %, 4x: its wall heating leaves the
+  // shocked air's plateau uneven); relaxation 0.4 % as for u (observed +0.08 %, 5x). Was 1 %
+  // for both (12.5x for relaxation).
+  EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.01);
+  EXPECT_LT(std::abs(rx.p_air / rx.p_star - 1), 0.004);
   // Relaxation removes most of the wall heating of the air beside the interface and puts the
-  // air shock back where it belongs.
+  // air shock back where it belongs. Observed: e error 11 % (bound 20 %, 1.8x) against 62 %
+  // with equal strain (ratio 0.18, bound 0.5); shock +0.46 cells (bound 1 cell, 2.2x) against
+  // +2.35 (bound 3 cells, 1.28x: equal strain's wall heating pushes the air shock ahead, the
+  // bound says by less than 3 cells); L1(u) 6.0e-3 against 1.5e-2 (ordering only).
   EXPECT_LT(rx.e_air_err, 0.2);
   EXPECT_LT(rx.e_air_err, 0.5 * es.e_air_err);
   EXPECT_LT(std::abs(rx.shock - rx.shock_exact), 1 * rx.dx);
@@ -465,46 +532,62 @@ TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
   // The isentrope solver evaluates the EOS in Real: a float build reaches about 1e-7 (observed
   // up to 5e-8 on Sod, 1.7e-7 on 123) and, for water, the float resolution of its pressure,
   // 3e-9 Mbar against p* = 4.8e-6 (observed 2.6e-4).
-  const double tol = test::by_precision(1e-8, 2e-7);
+  // In double the solver's error is that of interpolating its table linearly between nodes
+  // h = ln(1e-4) / 200000 = 4.6e-5 apart (RK4's own, h^4, is 1e-17): h^2 / 8 = 2.7e-10 times
+  // the curvature of e(s), u(s), O(1) for these gases. The bound 1e-9 is that estimate with a
+  // curvature up to 4; the observed differences, printed at the end, are 3e-12 to 3e-11 (the
+  // star state rarely sits mid-interval, where the estimate is reached). Was 1e-8.
+  const double tol = test::by_precision(1e-9, 2e-7);
+  // Every comparison goes through `near`, which keeps each block's largest difference and its
+  // bound; all are printed at the end.
+  std::vector<std::pair<std::string, std::pair<double, double>>> seen;
+  const auto near = [&](double a, double b, double bound, const char* what) {
+    EXPECT_NEAR(a, b, bound) << what;
+    if (seen.empty() || seen.back().first != what) seen.push_back({what, {0.0, bound}});
+    seen.back().second.first = std::max(seen.back().second.first, std::abs(a - b));
+  };
   const eos::Eos gas = eos::make_eos(eos::IdealGas{1.4});
   const exact::IsentropeRiemann a(gas, 1.0, 0.0, 1.0 / 0.4, 0.125, 0.0, 0.1, 1.4);
   const exact::Riemann b({1, 0, 1}, {0.125, 0, 0.1}, 1.4, 1.4);
-  EXPECT_NEAR(a.p_star() / b.p_star(), 1.0, tol);
-  EXPECT_NEAR(a.u_star() / b.u_star(), 1.0, tol);
+  near(a.p_star() / b.p_star(), 1.0, tol, "Sod p*");
+  near(a.u_star() / b.u_star(), 1.0, tol, "Sod u*");
   for (double xi : {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.7, 2.0}) {
     const auto s = a.sample(xi);
     const auto t = b.sample(xi);
-    EXPECT_NEAR(s.rho, t.rho, tol) << xi;
-    EXPECT_NEAR(s.u, t.u, tol) << xi;
-    EXPECT_NEAR(s.p, t.p, tol) << xi;
+    near(s.rho, t.rho, tol, "Sod profile");
+    near(s.u, t.u, tol, "Sod profile");
+    near(s.p, t.p, tol, "Sod profile");
   }
   // Toro's 123 problem: two rarefactions, so the right-rarefaction branch is sampled too
   const exact::IsentropeRiemann e123(gas, 1.0, -2.0, 0.4 / 0.4, 1.0, 2.0, 0.4, 1.4);
   const exact::Riemann t123({1, -2, 0.4}, {1, 2, 0.4}, 1.4, 1.4);
-  EXPECT_NEAR(e123.p_star() / t123.p_star(), 1.0, test::by_precision(1e-7, 1e-6));
-  EXPECT_NEAR(e123.u_star(), t123.u_star(), tol);
+  near(e123.p_star() / t123.p_star(), 1.0, test::by_precision(1e-9, 1e-6), "123 p*");
+  near(e123.u_star(), t123.u_star(), tol, "123 u*");
   for (double xi : {-3.0, -2.0, -1.0, -0.2, 0.0, 0.2, 1.0, 2.0, 3.0}) {
     const auto s = e123.sample(xi);
     const auto t = t123.sample(xi);
-    EXPECT_NEAR(s.rho, t.rho, tol) << xi;
-    EXPECT_NEAR(s.u, t.u, tol) << xi;
-    EXPECT_NEAR(s.p, t.p, tol) << xi;
+    near(s.rho, t.rho, tol, "123 profile");
+    near(s.u, t.u, tol, "123 profile");
+    near(s.p, t.p, tol, "123 profile");
   }
   // water (stiffened gas) into air: the isentrope stops before p = 0, p* = 4.8e-6 Mbar
   const eos::Eos water = eos::make_eos(eos::StiffenedGas{4.4, 6e-3});
   const double ew = (1e-2 + 4.4 * 6e-3) / 3.4;
   const exact::IsentropeRiemann c(water, 1.0, 0.0, ew, 1e-3, 0.0, 1e-6, 1.4);
   const exact::Riemann d({1, 0, 1e-2}, {1e-3, 0, 1e-6}, 4.4, 1.4, 6e-3, 0);
-  EXPECT_NEAR(c.p_star() / d.p_star(), 1.0, test::by_precision(1e-7, 1e-3));
-  EXPECT_NEAR(c.u_star() / d.u_star(), 1.0, test::by_precision(1e-7, 1e-5));
-  // JWL products: the table at half the number of steps gives the same star state
+  // (double: water expands from 1e-2 to 4.8e-6 Mbar, far down the table where the curvature
+  // of u(s) is larger: observed 2.0e-9 (p*), 1.6e-9 (u*); bound 1e-8, 5x; was 1e-7)
+  near(c.p_star() / d.p_star(), 1.0, test::by_precision(1e-8, 1e-3), "water p*");
+  near(c.u_star() / d.u_star(), 1.0, test::by_precision(1e-8, 1e-5), "water u*");
+  // JWL products: the table at half the number of steps gives the same star state, to the
+  // interpolation estimate at the doubled step, (2h)^2 / 8 = 1.1e-9 (observed 6e-12 to 1.3e-11)
   const auto* m = materials::find_material("pbx9404_products");
   const eos::Eos jwl = materials::make_eos(*m);
   const double e0 = m->param("E0") / m->rho0;
   const exact::IsentropeRiemann fine(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4);
   const exact::IsentropeRiemann half(jwl, m->rho0, 0.0, e0, 1.225e-3, 0.0, 1e-6, 1.4, 100000);
-  EXPECT_NEAR(half.p_star() / fine.p_star(), 1.0, test::by_precision(1e-9, 1e-6));
-  EXPECT_NEAR(half.u_star() / fine.u_star(), 1.0, test::by_precision(1e-9, 1e-6));
+  near(half.p_star() / fine.p_star(), 1.0, test::by_precision(1e-9, 1e-6), "JWL half-steps p*");
+  near(half.u_star() / fine.u_star(), 1.0, test::by_precision(1e-9, 1e-6), "JWL half-steps u*");
   // ... and lies on the closed-form JWL isentrope through the left state,
   // p_s(V) = A exp(-R1 V) + B exp(-R2 V) + C V^-(1 + omega), V = rho0 / rho
   const auto j = jwl.jwl();
@@ -513,7 +596,12 @@ TEST(ExactSolution, IsentropeRiemannMatchesClosedForm) {
   const double vs = m->rho0 / fine.rho_star_left();
   const double ps =
       j.a * std::exp(-j.r1 * vs) + j.b * std::exp(-j.r2 * vs) + cc * std::pow(vs, -(1 + j.omega));
-  EXPECT_NEAR(fine.p_star() / ps, 1.0, 1e-6);
+  // the same interpolation estimate as above in double (observed 3.6e-11; was 1e-6); float
+  // evaluates the EOS in Real, as for the gases
+  near(fine.p_star() / ps, 1.0, test::by_precision(1e-9, 1e-6), "JWL closed-form isentrope");
+  for (const auto& [what, v] : seen)
+    std::printf("isentrope solver vs reference, %-26s largest difference %.2e (bound %.0e)\n",
+                what.c_str(), v.first, v.second);
 }
 
 namespace {
@@ -617,11 +705,17 @@ TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
     EXPECT_GT(w->rho_min, 0) << name;
     EXPECT_GT(w->e_min, 0) << name;
     EXPECT_GT(w->p_min, 0) << name;
+    // Masses to round-off: a rounding per cell in each of 3 remap sweeps of ~500 cycles,
+    // 3 x 535 x 2.2e-16 = 3.5e-13 if all of one sign; observed 5.2e-15 to 6.5e-15 (mixed
+    // signs cancel). The air's bound was 1e-12 (170x).
     EXPECT_LT(std::abs(w->dm_products), test::roundoff(1e-13)) << name;
-    EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-12)) << name;
+    EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-13)) << name;
   }
   // Star state (observed at 400 cells: KE fix on p +3.0 %, u +2.2 %; off p -5.1 %, u +0.7 %,
-  // its shocked air still short of the plateau for the energy it lost).
+  // its shocked air still short of the plateau for the energy it lost). The exact star state
+  // is the reference, but at one resolution and with the products' known over-expansion (the
+  // pin below) in the run, so these bounds are margins of 1.4x to 2.9x on the observations,
+  // not accuracy claims; a convergence study waits on issue #16.
   EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.05);
   EXPECT_LT(std::abs(es.u_mean / es.u_star - 1), 0.04);
   EXPECT_LT(std::abs(nk.p_air / nk.p_star - 1), 0.07);
@@ -755,7 +849,10 @@ TEST(MultiMaterial, SliversStayFiniteAndPositive) {
                   early.slivers_end, early.smallest);
       // (float: the relaxation squeezes the air slivers in the water below the 4.8e-7 floor
       // within 3 cycles; 76 of 160 remain there, the smallest 1.3e-6)
+      // (double: 140 of the 160 remain, 1.4x the bound; the bound asks that most of them do)
       EXPECT_GE(early.slivers_end, test::kFloat ? 60 : 100) << name;
+      // the smallest painted slivers (1e-12) are still there: observed 1.0e-12 and 1.4e-12;
+      // the bound 1e-11 is the next painted fraction, which would show they had all gone
       EXPECT_LE(early.smallest, test::by_precision(1e-11, 1.5e-6)) << name;
       EXPECT_EQ(early.bad, LONG_MAX) << name;
       EXPECT_EQ(s.bad, LONG_MAX) << name;
@@ -765,8 +862,13 @@ TEST(MultiMaterial, SliversStayFiniteAndPositive) {
       // In float the floor is 4.8e-7 and the slivers 1e-6: the water slivers in the air,
       // 80 x 1e-6 x 0.125 g = 1e-5 g, may all go to the air (0.03 g), 3.3e-4 of it (observed
       // 2.9e-4); the water's own change is float round-off (observed 1.4e-6).
-      EXPECT_LT(std::abs(s.water_mass_change), test::by_precision(1e-12, 1e-5)) << name;
-      EXPECT_LT(std::abs(s.air_mass_change), test::by_precision(1e-9, 4e-4)) << name;
+      // In double the handed-over mass is 40 x 4 x 1e-14 x 0.125 x 1 = 2e-14 g: 3e-16 of the
+      // water (70 g) and 7e-13 of the air (0.03 g); the remap's round-off adds 3 sweeps x
+      // 293 cycles x 2.2e-16 = 1.9e-13 at worst. Observed: water 3.3e-15 to 4.3e-15 (bound
+      // 2e-13, was 1e-12), air 1.1e-13 with equal strain, 4e-15 with relaxation (bound 1e-12,
+      // the handed-over mass plus round-off; was 1e-9).
+      EXPECT_LT(std::abs(s.water_mass_change), test::by_precision(2e-13, 1e-5)) << name;
+      EXPECT_LT(std::abs(s.air_mass_change), test::by_precision(1e-12, 4e-4)) << name;
     }
 }
 
@@ -850,14 +952,19 @@ Closure one_cycle_closure(const std::string& layout, const std::string& closure)
 TEST(MultiMaterial, RelaxationEqualisesMixedCellPressuresInOneCycle) {
   for (const std::string layout : {"compact", "dense"}) {
     const Closure es = one_cycle_closure(layout, "equal_strain");
+    // the initial spread is 1 - 1e-6 / 1e-2 = 0.9999 by construction; equal strain keeps it
+    // (observed 1.00): 0.99 is within 1 % of it because it is the initial state's own value
     EXPECT_GT(es.spread, 0.99) << layout;
     EXPECT_EQ(es.alpha_min, 0.5) << layout;
     EXPECT_EQ(es.alpha_max, 0.5) << layout;
     const Closure rx = one_cycle_closure(layout, "relaxation");
-    // float: water's pressure resolution eps rho c^2 = 3.1e-9 Mbar against P* = 2e-6 Mbar
-    // (observed 3.9e-4)
-    EXPECT_LT(rx.spread, test::by_precision(1e-9, 2e-3)) << layout;
+    // Water's pressure resolution, eps rho c^2 (rho c^2 = 2.6e-2 Mbar), against P* = 2e-6
+    // Mbar: 2.9e-12 in double (observed 1.5e-13; was 1e-9, 6700x), 1.6e-3 in float (observed
+    // 3.9e-4)
+    EXPECT_LT(rx.spread, test::by_precision(3e-12, 2e-3)) << layout;
     EXPECT_EQ(rx.alpha_min, rx.alpha_max) << layout;  // every cell alike
+    // Nothing moves in one cycle at rest and the closure changes volumes, not masses or
+    // energies: round-off of the cell sums (80 cells), observed exactly 0 in double.
     EXPECT_LT(std::abs(rx.mass_change), test::roundoff(1e-14)) << layout;
     EXPECT_LT(std::abs(rx.energy_change), test::roundoff(1e-13)) << layout;
   }
