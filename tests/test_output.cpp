@@ -302,10 +302,17 @@ TEST_F(Output, SigtermStopsAfterTheCycleAndTheRestartFinishesBitwiseEqual) {
 // which finish the cycle and write everything (mpiexec itself then exits 1, README); the
 // restart on 2 ranks ends bitwise equal to a straight run on 1 rank (the decomposition is
 // rank-invariant).
+// The run is long (t = 8, 488 cycles, about 6 s on one core) because Open MPI's mpiexec forwards
+// the signal to the ranks only after a delay that grows with the machine's load: with t = 1.2
+// (88 cycles) a loaded CI machine once finished the run before the ranks saw the SIGTERM sent
+// at cycle 20, and a later run stopped only at cycle 175.
+const std::vector<std::string> kTripleLong = {"--set", "time.end=8.0", "--set",
+                                              "output.log_every=1"};
+
 TEST_F(Output, SigtermThroughMpiexecStopsEveryRankAndRestarts) {
-  ASSERT_EQ(run(args("triple_point.yaml", kTriple, "straight")).status, 0);
+  ASSERT_EQ(run(args("triple_point.yaml", kTripleLong, "straight")).status, 0);
   std::vector<std::string> argv = {"mpiexec", "-np", "2", exe()};
-  auto a = args("triple_point.yaml", kTriple, "sig");
+  auto a = args("triple_point.yaml", kTripleLong, "sig");
   a.pop_back();
   argv.insert(argv.end(), a.begin(), a.end());
   Child c(dir_, argv);
@@ -320,7 +327,7 @@ TEST_F(Output, SigtermThroughMpiexecStopsEveryRankAndRestarts) {
   EXPECT_EQ(s["ranks"], 2);
   EXPECT_TRUE(holds(r.out, "stopped (interrupted by a signal)")) << r.out;
   ASSERT_EQ(s["checkpoints"].size(), 1u);
-  auto again = args("triple_point.yaml", kTriple, "sig");
+  auto again = args("triple_point.yaml", kTripleLong, "sig");
   again.insert(again.end(), {"--restart", "latest"});
   const Result r2 = run(again, 120, {"mpiexec", "-np", "2"});
   ASSERT_EQ(r2.status, 0) << r2.err;
