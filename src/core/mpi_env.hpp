@@ -9,8 +9,16 @@ namespace mp {
 // (open-mpi/ompi issue 12718, fixed upstream in 2024). Seen here: 4 of 20 runs of test_hdf5 on
 // 4 ranks. Excluding it lets OMPIO pick another fcoll component (0 of 24 runs failed). A value
 // the user already set wins; other MPI implementations ignore the variable.
+//
+// Open MPI's shared-file-pointer component "sm" guards each file it opens with a named POSIX
+// semaphore in /dev/shm; a process killed inside MPI_File_open (a crash, SIGKILL, a batch
+// system's kill) leaves that semaphore taken, and every later run that opens a file of the same
+// name waits on it for ever (seen here: a restart after a SIGKILL during a checkpoint write hung
+// in mca_sharedfp_sm_file_open). Parallel HDF5 never uses shared file pointers, so the component
+// is excluded too.
 inline void prepare_mpi_environment() {
   setenv("OMPI_MCA_fcoll", "^vulcan", 0);
+  setenv("OMPI_MCA_sharedfp", "^sm", 0);
 }
 
 }  // namespace mp
