@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# CTest test perf_check_fires (label perf): the timing check fires on an injected slowdown and
+# passes a plain rerun. It records its own baseline in a temporary directory (one quick run,
+# threshold 1.5: the quick mode's CPU-time spread was at most 32 % between rounds and 2 % between
+# runs on the loaded 2-core machine, docs/perf-check.md), then runs the check twice against it:
+#   plain                                   exit 0, "perf_check: passed"
+#   MINIPAGOSA_PERF_INJECT=single_material  exit 1, the single_material row "SLOWER: REGRESSION"
+#                                           (25 more lagrange::viscosity launches per cycle:
+#                                           about twice the cycle's time), no other row slower,
+#                                           and its launches 48 -> 98 named.
+#   perf_check_test.sh PERF_CHECK_EXE
+set -uo pipefail
+exe="$1"
+tmp=$(mktemp -d)
+trap 'rm -rf "${tmp}"' EXIT
+export OMP_NUM_THREADS=1 OMP_PROC_BIND=false
+unset MINIPAGOSA_PERF_INJECT MINIPAGOSA_PERF_INJECT_REPEATS
+fail=0
+check() {  # what, condition...
+  local what="$1"
+  shift
+  if "$@"; then echo "ok: ${what}"; else echo "FAILED: ${what}"; fail=1; fi
+}
+
+"${exe}" --quick --json "${tmp}/run.json" > "${tmp}/record.txt" 2>&1
+check "recording run exits 0" test $? -eq 0
+"${exe}" --make-baseline "${tmp}/baseline.json" "${tmp}/run.json" --floor 0.5 > /dev/null
+check "baseline written" test -s "${tmp}/baseline.json"
+
+"${exe}" --quick --baseline "${tmp}/baseline.json" > "${tmp}/plain.txt" 2>&1
+rc=$?
+echo "--- plain rerun (exit ${rc}):"
+cat "${tmp}/plain.txt"
+check "plain rerun exits 0" test "${rc}" -eq 0
+check "plain rerun passes" grep -q "^perf_check: passed" "${tmp}/plain.txt"
+check "plain rerun: no benchmark slower" bash -c "! grep -q 'SLOWER' '${tmp}/plain.txt'"
+check "plain rerun: launches unchanged" bash -c "! grep -q 'LAUNCHES CHANGED' '${tmp}/plain.txt'"
+
+MINIPAGOSA_PERF_INJECT=single_material "${exe}" --quick --baseline "${tmp}/baseline.json" \
+  > "${tmp}/inject.txt" 2>&1
+rc=$?
+echo "--- injected slowdown (exit ${rc}):"
+cat "${tmp}/inject.txt"
+check "injected run exits 1" test "${rc}" -eq 1
+check "injected run names single_material slower" \
+  grep -qE "^\| single_material \|.*\| SLOWER: REGRESSION \|" "${tmp}/inject.txt"
+check "injected run: only single_material slower" \
+  test "$(grep -c 'SLOWER: REGRESSION' "${tmp}/inject.txt")" -eq 1
+check "injected run: its 50 extra launches named" \
+  grep -qE "^\| single_material \| 48 \| 98 \| LAUNCHES CHANGED: .*lagrange::viscosity 1 -> 26" \
+  "${tmp}/inject.txt"
+check "injected run says FAILED" grep -q "^perf_check: FAILED" "${tmp}/inject.txt"
+exit "${fail}"
