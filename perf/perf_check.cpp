@@ -10,27 +10,31 @@
 //   halo             one ghost exchange of the node velocities and one of rho, e on the Sedov
 //                    mesh (the Lagrange step's two exchanges; at one rank a `halo::fill` each)
 // Protocol: every benchmark is set up and warmed up, then `rounds` rounds run; a round measures
-// the STREAM triad (perf/stream.hpp, best of its repetitions) and then times one block of each
-// benchmark in turn (T A B C D, T A B C D, ...), so a benchmark and the triad it is normalised
-// by see the same machine state. A block's seconds per unit times the round's triad bandwidth
-// is the benchmark's normalised cost, "triad-MB": the megabytes the triad moves in that time.
-// A benchmark's result is the median over rounds. Launches per unit come from one separate
-// unit under the Kokkos Tools callbacks (perf/kernel_timer.hpp), as tests/test_launches.cpp.
+// the STREAM triad (perf/stream.hpp, best of its repetitions, wall- and CPU-timed) and then
+// times one block of each benchmark in turn (T A B C D, T A B C D, ...), so a benchmark and the
+// triad beside it see the same machine state. Each block is recorded four ways (kMetrics): CPU
+// seconds per unit, wall seconds per unit, and each times the round's triad bandwidth (the
+// normalised cost, "triad-MB": what the triad moves in that time). A benchmark's result in
+// each metric is the median over rounds. Launches per unit come from one separate unit under
+// the Kokkos Tools callbacks (perf/kernel_timer.hpp), as in tests/test_launches.cpp.
 //
-// Verdicts against the baseline: ratio = now / baseline (normalised); above the benchmark's
-// threshold (set by --make-baseline from the run-to-run spread measured on the machine, or
-// --threshold) the benchmark is re-measured once in as many rounds (--confirm) and is a
-// regression only when the re-measurement is above it too; a launch count that differs in
-// any kernel is a failure. Exit 0: pass; 1: a regression or changed launch counts; 2: bad
-// input (options, a missing or mismatched baseline).
+// Verdicts against the baseline, in the metric the baseline names (--make-baseline --metric;
+// cpu_seconds in the committed one: on the loaded 2-core machine its run-to-run spread was
+// 4-24 %, the triad-normalised CPU time's 12-32 %, wall time's 22-49 %; docs/perf-check.md):
+// ratio = now / baseline; above the benchmark's threshold (set by --make-baseline from the
+// run-to-run spread measured on the machine, or --threshold) the benchmark is re-measured in
+// as many rounds (--confirm) and is a regression only when the re-measurement is above it
+// too; a launch count that differs in any kernel is a failure. Exit 0: pass; 1: a regression
+// or changed launch counts; 2: bad input (options, a missing or mismatched baseline).
 //
 // MINIPAGOSA_PERF_INJECT=<benchmark> slows one benchmark on purpose to prove the check fires:
-// every unit of it repeats one kernel MINIPAGOSA_PERF_INJECT_REPEATS times more (default 6;
+// every unit of it launches one kernel MINIPAGOSA_PERF_INJECT_REPEATS more times (default 25;
 // `lagrange::viscosity` in the cycles, `halo::fill` in the halo). The repeats are made here,
 // in the benchmark program; the physics library is untouched.
 //
 //   perf_check [--quick] [--rounds N] [--baseline B.json] [--json out.json] [--threshold X]
-//   perf_check --make-baseline OUT.json RUN1.json RUN2.json ... [--spread-factor K]
+//   perf_check --make-baseline OUT.json RUN1.json RUN2.json ... [--metric M] [--spread-factor K]
+//              [--floor F]
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -518,6 +522,12 @@ int check(int argc, char** argv) {
           launches_text(b.launches).c_str());
     }
   } else {
+    const auto triads = base.value("stream_triad_cpu_GBs", std::vector<double>{});
+    if (!triads.empty())
+      std::printf(
+          "STREAM triad (CPU-timed) now %.1f GB/s, in the baseline's runs %.1f GB/s (a "
+          "different machine shows here first).\n",
+          perf::median(triad_cpu), perf::median(triads));
     std::printf("Baseline %s; verdicts on %s (%s).\nThreshold: %s.\n", baseline.c_str(),
                 metric->name, metric->what,
                 threshold > 0 ? ("--threshold " + std::to_string(threshold) +
