@@ -19,8 +19,9 @@
 // the Kokkos Tools callbacks (perf/kernel_timer.hpp), as in tests/test_launches.cpp.
 //
 // Verdicts against the baseline, in the metric the baseline names (--make-baseline --metric;
-// cpu_seconds in the committed one: on the loaded 2-core machine its run-to-run spread was
-// 4-24 %, the triad-normalised CPU time's 12-32 %, wall time's 22-49 %; docs/perf-check.md):
+// cpu_seconds in the committed one: in three sets of 5 runs on the loaded 2-core machine its
+// run-to-run spread was 3.5-29 %, the triad-normalised CPU time's 12-50 %, wall time's
+// 22-151 %; docs/perf-check.md):
 // ratio = now / baseline; above the benchmark's threshold (set by --make-baseline from the
 // run-to-run spread measured on the machine, or --threshold) the benchmark is re-measured in
 // as many rounds (--confirm) and is a regression only when the re-measurement is above it
@@ -39,7 +40,6 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -112,7 +112,7 @@ struct Bench {
   std::string name, unit, inject_kernel;
   int per_block = 1;
   std::function<void(int)> run;                       // runs n units
-  std::function<void()> inject;                       // one extra launch of the injected kernel
+  std::function<void()> inject;                       // one more call of the injected kernel
   int inject_repeats = 0;                             // per unit (0: not injected)
   std::map<std::string, std::vector<double>> rounds;  // per metric (kMetrics): per round
   std::map<std::string, long> launches;               // per unit, by kernel name
