@@ -528,12 +528,14 @@ int check(int argc, char** argv) {
           "STREAM triad (CPU-timed) now %.1f GB/s, in the baseline's runs %.1f GB/s (a "
           "different machine shows here first).\n",
           perf::median(triad_cpu), perf::median(triads));
+    char forced[120];
+    std::snprintf(forced, sizeof forced,
+                  "--threshold %g for every benchmark (the baseline's thresholds ignored)",
+                  threshold);
+    const std::string rule =
+        threshold > 0 ? forced : base.value("threshold_rule", std::string("?"));
     std::printf("Baseline %s; verdicts on %s (%s).\nThreshold: %s.\n", baseline.c_str(),
-                metric->name, metric->what,
-                threshold > 0 ? ("--threshold " + std::to_string(threshold) +
-                                 " for every benchmark (the baseline's thresholds ignored)")
-                                    .c_str()
-                              : base.value("threshold_rule", std::string("?")).c_str());
+                metric->name, metric->what, rule.c_str());
     std::printf(
         "\n| benchmark | baseline %s | now | ratio | limit | re-measured ratio | "
         "verdict | ratio of cpu_x_triad | ratio of wall time |\n"
