@@ -140,16 +140,23 @@ void Burn::update(const Field3& rho, double dt) {
   const Real t = Real(time_);
   auto f = f_, tl = t_light_;
   if (mm_) {
-    // the explosive burns at its own density
+    // the explosive burns at its own density; explosive that the remap carried, part burnt,
+    // into a cell that held none at the start (no lighting time of its own) has been lit
+    // already and finishes burning there at once (else it would keep F < 1, and c >= D, for
+    // good as the products expand)
     const int x = material_;
     const int ng = Mesh::ng;
+    const Real never = Real(kNeverLit);
     mm_->for_cells(
         "burn::fraction", {ng, ng, ng}, mesh_.owned_end(),
         KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
           for (int s = 0; s < cell.count(); ++s) {
             const mat::MatRef m = cell.get(s);
-            if (m.m == x && m.alpha > 0)
-              f(i, j, k) = update_burn_fraction(b, f(i, j, k), t, tl(i, j, k), *m.rho);
+            if (m.m != x || !(m.alpha > 0)) continue;
+            const Real f0 = f(i, j, k);
+            f(i, j, k) = tl(i, j, k) >= never && f0 > 0
+                             ? Real(1)
+                             : update_burn_fraction(b, f0, t, tl(i, j, k), *m.rho);
           }
         });
     return;

@@ -196,6 +196,9 @@ class Hydro {
   void mm_ke_fix();
   // The carriers' densities of a remap step (before the cell update).
   void mm_carriers();
+  // After the cell update: a cell its carrier left (through a face, or as a sliver below
+  // min_fraction) holds none of the module's quantities.
+  void mm_clear_absent();
   // The mass fluxes (face field of the sweep's axis) and densities the module quantities ride
   // on: a single-material scene's cell ones, or a multi-material scene's carriers.
   struct Carrier {

@@ -284,6 +284,20 @@ struct BurnHook {
   Real d_cj = 0;
 };
 
+// The viscous work of a mixed cell goes to its materials in proportion to their mass (the
+// same specific energy to each: -q dV / (rho_cell V)), not by equal strain, which would give
+// each material q dV / (rho_m V) and so heat (or, where the cell expands along one axis while
+// compressed along another, cool) a light material in a heavy one's shock by the density ratio:
+// air beside copper went to negative energy in a cycle. A material then takes q rho_m / rho_cell
+// as the viscous term of pdv_energy; a pure cell keeps q itself (rho_m == rho_cell: the same
+// work, and the bits of before). docs/numerics.md, "Mixed cells".
+template <class Cell>
+KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
+  int n = 0;
+  for (int s = 0; s < cell.count(); ++s) n += cell.get(s).alpha > 0 ? 1 : 0;
+  return n > 1;
+}
+
 BurnHook burn_hook(const burn::Burn* b) {
   if (!b) return {};
   return {b->material(), b->fraction(), b->params().d_cj};
@@ -332,7 +346,7 @@ void Hydro::mm_equation_of_state() const {
 
 void Hydro::mm_predictor(Real vol) {
   const auto mats = mats_;
-  auto q = s_.q, ph = s_.p_half;
+  auto q = s_.q, ph = s_.p_half, rho = s_.rho;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const BurnHook bh = burn_hook(burn_.get());
   mm_->for_cells(
@@ -342,11 +356,13 @@ void Hydro::mm_predictor(Real vol) {
         const Real v_half = vol + dv;
         Real sum = 0, last = 0;
         int n = 0;
+        const bool several = holds_several(cell);
+        const Real qs = q(i, j, k) / rho(i, j, k);
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          const Real e_half = pdv_energy(*m.e, *m.p, q(i, j, k), dv, mass);
+          const Real e_half = pdv_energy(*m.e, *m.p, several ? qs * *m.rho : q(i, j, k), dv, mass);
           Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
           if (m.m == bh.material) pm *= bh.f(i, j, k);
           *m.ph = pm;
@@ -375,11 +391,13 @@ void Hydro::mm_corrector(Real vol) {
         int slot[kMaxMaterials], id[kMaxMaterials];
         Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
         int n = 0;
+        const bool several = holds_several(cell);
+        const Real qs = q(i, j, k) / rho(i, j, k);
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          *m.e = pdv_energy(*m.e, *m.ph, q(i, j, k), dv, mass);
+          *m.e = pdv_energy(*m.e, *m.ph, several ? qs * *m.rho : q(i, j, k), dv, mass);
           *m.rho = mass / vnew;
           slot[n] = s;
           id[n] = m.m;
@@ -487,6 +505,32 @@ void Hydro::mm_remap_cells(int d) {
 void Hydro::mm_carriers() {
   for (int c = 0; c < 2; ++c)
     if (carrier_mask_[c]) mm_->carrier_density(carrier_mask_[c], carrier_rho_[c]);
+}
+
+void Hydro::mm_clear_absent() {
+  const int ng = Mesh::ng;
+  const auto end = mesh_.owned_end();
+  const Policy3 owned({ng, ng, ng}, {end[0], end[1], end[2]});
+  for (int c = 0; c < 2; ++c) {
+    if (!carrier_mask_[c]) continue;
+    struct Fields {
+      Field3 f[7];
+      int n = 0;
+    } fs;
+    if (c == 0 && strength_) {
+      for (const Field3& x : strength_->stress()) fs.f[fs.n++] = x;
+      fs.f[fs.n++] = strength_->plastic_strain();
+    } else if (c == 1 && burn_) {
+      fs.f[fs.n++] = burn_->fraction();
+    }
+    auto crho = carrier_rho_[c];
+    mm_->carrier_density(carrier_mask_[c], crho);
+    Kokkos::parallel_for(
+        "remap::clear_absent", owned, KOKKOS_LAMBDA(int i, int j, int k) {
+          if (crho(i, j, k) > 0) return;
+          for (int q = 0; q < fs.n; ++q) fs.f[q](i, j, k) = 0;
+        });
+  }
 }
 
 Hydro::Carrier Hydro::carrier(int slot) const {

@@ -172,6 +172,7 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   if (mm_) {
     for (int d = 0; d < 3; ++d)
       if (axes[d]) mm_remap_cells(d);
+    if (strength_ || burn_) mm_clear_absent();
   } else {
     Kokkos::parallel_for(
         "remap::cell_update", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {

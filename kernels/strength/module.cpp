@@ -209,12 +209,14 @@ std::vector<OutputField> Strength::output_fields() const {
 
 namespace {
 
-// The shear modulus and flow stress of a cell: the volume-fraction weighted sums over its
-// materials with strength, each at its own state; `solid` receives sum alpha_m rho_m over them.
+// The materials with strength of a cell: `frac` their summed volume fraction, `solid` their
+// sum alpha_m rho_m, and their shear modulus and flow stress, volume-fraction weighted over them
+// (each at its own state): G = sum alpha_m G_m / frac. A cell with none returns frac = 0.
 template <class Cell>
 KOKKOS_INLINE_FUNCTION void mixture_moduli(const MaterialModels& mm, const Cell& cell, Real eps_p,
-                                           Real eps_dot, bool half, Real& G, Real& Y, Real& solid) {
-  G = Y = solid = 0;
+                                           Real eps_dot, bool half, Real& G, Real& Y, Real& frac,
+                                           Real& solid) {
+  G = Y = frac = solid = 0;
   for (int s = 0; s < cell.count(); ++s) {
     const mat::MatRef m = cell.get(s);
     const FlowStress& f = mm.f[m.m];
@@ -223,7 +225,12 @@ KOKKOS_INLINE_FUNCTION void mixture_moduli(const MaterialModels& mm, const Cell&
         point_state(f, mm.rho0[m.m], *m.rho, *m.e, half ? *m.ph : *m.p, eps_p, eps_dot);
     G += m.alpha * f.shear_modulus(x);
     Y += m.alpha * f.yield_stress(x);
+    frac += m.alpha;
     solid += m.alpha * *m.rho;
+  }
+  if (frac > 0) {
+    G /= frac;
+    Y /= frac;
   }
 }
 
@@ -237,11 +244,12 @@ void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const 
       {mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
        mesh_.extent(Centering::Cell, 2)},
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        Real G, Y, solid;
-        mixture_moduli(models, cell, ep(i, j, k), Real(0), false, G, Y, solid);
-        if (!(solid > 0)) return;
+        Real G, Y, frac, solid;
+        mixture_moduli(models, cell, ep(i, j, k), Real(0), false, G, Y, frac, solid);
+        if (!(frac > 0)) return;
+        // the cell's shear stiffness: the solids' modulus over their share of the volume
         const Real c0 = c(i, j, k);
-        c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * G / rho(i, j, k));
+        c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * frac * G / rho(i, j, k));
       });
 }
 
@@ -258,12 +266,15 @@ void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, R
       "strength::predictor", {ng - 1, ng - 1, ng - 1}, {end[0] + 1, end[1] + 1, end[2] + 1},
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
-        Real G, Y, solid;
-        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, solid);
+        Real G, Y, frac, solid;
+        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, frac,
+                       solid);
         Sym t{};
-        if (solid > 0) {
+        if (frac > 0) {
           t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
           radial_return(t, Y, G);
+          // the cell's stress on its nodes: the solids' deviator over their share of the cell
+          t = Sym{frac * t.xx, frac * t.yy, frac * t.zz, frac * t.xy, frac * t.yz, frac * t.zx};
         }
         sh.set(i, j, k, t);
       });
@@ -280,12 +291,16 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
       "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
-        Real G, Y, solid;
-        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, solid);
-        if (!(solid > 0)) {
+        Real G, Y, frac, solid;
+        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, frac,
+                       solid);
+        if (!(frac > 0)) {
           s.set(i, j, k, Sym{});
           return;
         }
+        // the work of the cell's half-step stress (the power its nodal forces took), to the
+        // materials with strength, the same specific energy to each (the hydro's corrector then
+        // rebuilds a mixed cell's average from its materials)
         const Sym q = sh.get(i, j, k);
         const Real power = q.xx * L(0, 0) + q.yy * L(1, 1) + q.zz * L(2, 2) +
                            q.xy * (L(0, 1) + L(1, 0)) + q.yz * (L(1, 2) + L(2, 1)) +
@@ -294,8 +309,6 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
         const ReturnResult rr = radial_return(t, Y, G);
         s.set(i, j, k, t);
         ep(i, j, k) += rr.d_eps_p;
-        // the work goes to the materials with strength, the same specific energy to each (the
-        // hydro's corrector then rebuilds a mixed cell's average from its materials)
         const Real de = dt * power / solid;
         for (int n = 0; n < cell.count(); ++n) {
           const mat::MatRef m = cell.get(n);

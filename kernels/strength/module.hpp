@@ -24,16 +24,17 @@
 //    energy), over the owned cells; the halo then fills the ghosts (shear components change sign
 //    under the two reflections that flip them).
 //
-// Multi-material scenes (docs/numerics.md, "Strength in mixed cells"): the deviator and the
-// plastic strain stay cell quantities (DESIGN.md §3: "cell-averaged ... deviatoric stress"),
-// shared by the materials of a cell that have strength; the cell's shear modulus and flow stress
-// are the volume-fraction weighted sums over those materials, each evaluated at its own state
-// (rho_m, e_m, p_m), so a fluid (no strength) contributes none and a cell that is half fluid
-// carries half the stress; the deviator's work goes to the materials with strength, the same
-// specific energy to each; the remap carries the deviator and the plastic strain per unit mass
-// of those materials, with their summed material mass fluxes (the "carrier" of
-// kernels/hydro/hydro.hpp). Both layouts run the same point functions in material-id order, so
-// they give the same bits.
+// Multi-material scenes (docs/numerics.md, "Strength in mixed cells"): one deviator and one
+// plastic strain per cell (DESIGN.md §3), those of the cell's solid part — the materials with
+// strength, which share them (equal strain, as the hydro's mixed cells). Their shear modulus
+// and flow stress are the volume-fraction weighted means over those materials, each evaluated
+// at its own state (rho_m, e_m, p_m); the cell's stress on its nodes is the solids' deviator
+// times their volume fraction, so a fluid (no strength) carries none and a cell that is half
+// fluid transmits half the stress; the stress's work goes to the materials with strength, the
+// same specific energy to each; the remap carries the deviator and the plastic strain per unit
+// mass of those materials, with their summed material mass fluxes (the "carrier" of
+// kernels/hydro/hydro.hpp). A single-material scene is the case of fraction 1. Both layouts run
+// the same point functions in material-id order, so they give the same bits.
 #pragma once
 #include <array>
 #include <string>

@@ -170,13 +170,11 @@ strength::FlowStress material_strength(const MaterialSpec& m) {
     f.constant = {Real(st.shear_modulus > 0 ? st.shear_modulus : double(data->G0)), Real(st.yield)};
     return f;
   }
-  f = strength::make_flow_stress(
-      *data, st.model == "johnson_cook" ? strength::kJohnsonCook : strength::kSteinbergGuinan);
-  if (st.shear_modulus > 0) {
-    f.jc.G0 = Real(st.shear_modulus);
-    f.sg.G0 = Real(st.shear_modulus);
-  }
-  return f;
+  // a deck's shear modulus replaces the library's (and stands in where it cites none)
+  strength::StrengthData d = *data;
+  if (st.shear_modulus > 0) d.G0 = d.jc.G0 = d.sg.G0 = Real(st.shear_modulus);
+  return strength::make_flow_stress(
+      d, st.model == "johnson_cook" ? strength::kJohnsonCook : strength::kSteinbergGuinan);
 }
 
 // The burn module's set-up of a material's burn block (burn.on false when it has none).
