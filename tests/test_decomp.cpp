@@ -16,6 +16,7 @@ struct Fields {
   std::vector<double> rho, e, u, v, w;
   std::vector<std::vector<double>> fractions;  // per material (multi-material scenes)
   std::vector<std::vector<double>> strength;   // stress deviator and plastic strain (if any)
+  std::vector<double> burn;                    // burn fraction (if any)
   long cycles = 0;
 };
 
@@ -43,6 +44,8 @@ Fields run_on(const Scene& scene, int nranks) {
         f.strength.push_back(test::gather(m, c, Centering::Cell));
       f.strength.push_back(test::gather(m, st->plastic_strain(), Centering::Cell));
     }
+    if (const burn::Burn* b = r.sim->hydro().burn())
+      f.burn = test::gather(m, b->fraction(), Centering::Cell);
     f.cycles = r.result.cycles;
     r.sim.reset();
     MPI_Comm_free(&sub);
@@ -89,11 +92,13 @@ void compare_rank_counts(const Scene& scene) {
     EXPECT_EQ(mismatches(one.strength[q], two.strength[q]), 0) << "strength " << q << ": 1 vs 2";
     EXPECT_EQ(mismatches(one.strength[q], four.strength[q]), 0) << "strength " << q << ": 1 vs 4";
   }
+  EXPECT_EQ(mismatches(one.burn, two.burn), 0) << "burn fraction: 1 vs 2";
+  EXPECT_EQ(mismatches(one.burn, four.burn), 0) << "burn fraction: 1 vs 4";
   std::printf(
       "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end; 1, 2, "
       "4 ranks bitwise identical in %zu fields\n",
       scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed,
-      5 + one.fractions.size() + one.strength.size());
+      5 + one.fractions.size() + one.strength.size() + (one.burn.empty() ? 0 : 1));
   if (!one.fractions.empty()) {
     EXPECT_GT(mixed, 0);
   }
@@ -156,4 +161,14 @@ TEST(Decomposition, StrengthIdenticalOn1_2_4Ranks) {
        "[0.02, 0.01, -0.005]}]",
        "time.end=0.5"});
   compare_rank_counts(scene);
+}
+
+// Strength and burn in a multi-material scene (configs/charge_3d.yaml: Comp B lit off-axis
+// around a steel inclusion drives a copper plate; 4 materials): the carriers' mass fluxes, the
+// lighting times (gathered over the ranks) and the module fields' halos, in both layouts.
+TEST(Decomposition, MultiMaterialStrengthAndBurnIdenticalOn1_2_4Ranks) {
+  for (const char* layout : {"compact", "dense"})
+    compare_rank_counts(test::load_scene(
+        "charge_3d.yaml",
+        {"time.end=1.2", "output.write=false", std::string("numerics.layout=") + layout}));
 }

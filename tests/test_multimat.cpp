@@ -243,6 +243,9 @@ TEST(MultiMaterial, DenseAndCompactLayoutsAgree) {
   expect_layouts_agree("water_air.yaml", {"time.end=60", "numerics.closure=relaxation"});
   expect_layouts_agree("triple_point.yaml",
                        {"mesh.cells=[35,15,2]", "time.end=1.5", "numerics.closure=relaxation"});
+  // strength and burn in mixed cells (4 materials; the deviator, plastic strain, burn
+  // fraction and lighting times are among the output fields compared)
+  expect_layouts_agree("charge_3d.yaml", {"time.end=1.5", "output.write=false"});
   // with no fraction floor asked for, the build's own floor keeps the layouts together
   expect_layouts_agree("sphere_advection.yaml",
                        {"mesh.cells=[12,12,12]", "time.end=1.0", "numerics.min_fraction=0"});

@@ -219,7 +219,10 @@ TEST(ModuleRestart, StrengthAndBurnFromHalfTheRanksAreBitwiseEqual) {
        {"mesh.cells=[24,10,8]", "mesh.hi=[1,0.4,0.32]",
         "materials.0.burn.detonators=[{type: point, at: [0.1, 0.2, 0.16]}]", "time.end=0.5",
         "output.write=false"},
-       false}};
+       false},
+      // both modules in a multi-material scene (lighting times rebuilt from the restored
+      // fractions)
+      {"charge_3d.yaml", {"time.end=0.6", "output.write=false"}, true}};
   for (const Case& c : cases) {
     const Snapshot straight = straight_run(c);
     SharedDir dir;
