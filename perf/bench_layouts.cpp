@@ -21,7 +21,8 @@
 // separate block afterwards times every Kokkos kernel with a fence on each side (the breakdown;
 // its fences are never part of the plain timing).
 //   bench_layouts [--materials 2,4,8,16] [--widths 100,20,5,2] [--cells 200,16,16]
-//                 [--cycles 4] [--repeats 5] [--warmup 3] [--json perf/results/layouts.json]
+//                 [--cycles 4] [--repeats 5] [--warmup 3] [--strength 0]
+//                 [--json perf/results/layouts.json]
 #include <mpi.h>
 #include <unistd.h>
 
@@ -181,7 +182,7 @@ int main(int argc, char** argv) {
   {
     CLI::App app{"minipagosa dense vs compact material layout benchmark"};
     std::vector<int> materials{2, 4, 8, 16}, widths{100, 20, 5, 2}, cells{200, 16, 16};
-    int cycles = 4, repeats = 5, warmup = 3;
+    int cycles = 4, repeats = 5, warmup = 3, strength = 0;
     bool no_breakdown = false;
     std::string json, note;
     app.add_option("--materials", materials, "material counts")->delimiter(',');
@@ -193,12 +194,16 @@ int main(int argc, char** argv) {
     app.add_option("--cycles", cycles, "timed cycles per block (and in the breakdown block)");
     app.add_option("--repeats", repeats, "timed blocks per layout (median reported)");
     app.add_option("--warmup", warmup, "untimed cycles per layout first");
+    app.add_option("--strength", strength,
+                   "the first N materials have elastic-plastic strength (the strength module "
+                   "in mixed cells; 0: none)");
     app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");
     app.add_option("--json", json, "write results as JSON here");
     app.add_option("--note", note, "a line about the run conditions, printed and kept in the JSON");
     try {
       app.parse(argc, argv);
-      if (cycles < 1 || repeats < 1 || warmup < 0) throw CLI::ValidationError("counts", "< 1");
+      if (cycles < 1 || repeats < 1 || warmup < 0 || strength < 0)
+        throw CLI::ValidationError("counts", "< 1");
     } catch (const CLI::ParseError& e) {
       rc = app.exit(e);
     }
@@ -216,7 +221,8 @@ int main(int argc, char** argv) {
          << ", \"statistic\": \"median over blocks\", \"order\": \"dense and compact alternate "
             "block by block\", \"breakdown\": \""
          << (breakdown ? "separate block, Kokkos::fence before and after every kernel" : "off")
-         << "\"},\n  \"note\": \"" << note << "\",\n  \"runs\": [";
+         << "\"},\n  \"materials_with_strength\": " << strength << ",\n  \"note\": \"" << note
+         << "\",\n  \"runs\": [";
       bool first = true;
       const char* layouts[2] = {"dense", "compact"};
       for (int nmat : materials)
@@ -226,7 +232,8 @@ int main(int argc, char** argv) {
             // the allocations this layout's run makes and keeps through set-up and warm-up
             perf::AllocationTracker mem;
             const Scene scene = read_scene(
-                Deck::parse(stripes_deck(nmat, width, cells, layouts[l]), "layouts.yaml"));
+                Deck::parse(stripes_deck(nmat, width, cells, layouts[l], std::min(strength, nmat)),
+                            "layouts.yaml"));
             RunSettings settings;
             settings.quiet = true;
             run[l].sim = std::make_unique<Simulation>(scene, MPI_COMM_WORLD, settings);
@@ -367,6 +374,9 @@ int main(int argc, char** argv) {
             st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks, cells[0], cells[1],
             cells[2], warmup, repeats, cycles);
         if (!note.empty()) std::printf("%s\n", note.c_str());
+        if (strength > 0)
+          std::printf("materials with strength (elastic-plastic): the first %d of each scene\n",
+                      strength);
         std::printf(
             "B/cell: live Kokkos allocations per owned cell after set-up and warm-up (Kokkos "
             "Tools allocate/deallocate callbacks): the material state (dense::, compact:: labels: "

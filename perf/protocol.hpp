@@ -66,8 +66,11 @@ inline double others_share(const CpuSample& a, const CpuSample& b) {
 // cell, so exactly 1/width of the cells are mixed (two materials each). Ideal gases of
 // different gamma and density at one pressure, moving at a uniform speed along x: every cycle
 // remaps material across the interfaces. `layout` is "dense" or "compact".
+// The first `strength` materials get elastic-perfectly-plastic strength (G 0.5, Y 0.05 in the
+// deck's units, about the gases' pressure: every stripe of them yields as it is sheared), so
+// the layout study can time the strength module in mixed cells.
 inline std::string stripes_deck(int nmat, int width, const std::vector<int>& cells,
-                                const char* layout) {
+                                const char* layout, int strength = 0) {
   const double dx = 1.0 / cells[0];
   const double lx = 1.0, ly = double(cells[1]) * dx, lz = double(cells[2]) * dx;
   std::ostringstream d;
@@ -78,7 +81,10 @@ inline std::string stripes_deck(int nmat, int width, const std::vector<int>& cel
     << "time: {end: 1.0e9, cfl: 0.5, dt_initial: 1.0e-3}\n"
     << "numerics: {layout: " << layout << ", samples: 2}\nmaterials:\n";
   for (int m = 0; m < nmat; ++m)
-    d << "  - {name: gas" << m << ", eos: ideal_gas, gamma: " << 1.3 + 0.02 * m << "}\n";
+    d << "  - {name: gas" << m << ", eos: ideal_gas, gamma: " << 1.3 + 0.02 * m
+      << (m < strength ? ", strength: {model: elastic_plastic, shear_modulus: 0.5, yield: 0.05}"
+                       : "")
+      << "}\n";
   d << "regions:\n  - {material: gas0, shape: all, density: 1.0, pressure: 1.0, velocity: [0.3, 0, "
        "0]}\n";
   const int stripes = cells[0] / width;
