@@ -179,12 +179,20 @@ TEST(StrengthCycle, ElasticPlasticPistonMatchesTheExactSolution) {
     EXPECT_LT(std::abs(err[2]), cell_e);
     // The plastic state behind the piston follows from the jump conditions, which the
     // conservative scheme keeps, so its plateau is exact but for the wall's start-up transient:
-    // sigma within 1e-4 (observed -4e-5 / -1e-5); the density moves by sigma / K of that
-    // (K = rho0 c0^2 = 0.742 Mbar, sigma = 0.0156 Mbar: 2.1e-6; bound 3e-6). Were 1 % and 0.1 %.
-    EXPECT_LT(std::abs(err[3]), 1e-4);
-    EXPECT_LT(std::abs(err_rho), 3e-6);
-    // every error falls with resolution
-    for (int k = 0; k < 4; ++k) EXPECT_LE(std::abs(err[k]), std::abs(prev[k])) << k;
+    // sigma within 1e-4 (observed -4.05e-5 / -9.8e-6); the density moves by sigma / K of that
+    // (K = rho0 c0^2 = 0.742 Mbar, sigma = 0.0156 Mbar: 2.1e-6; bound 3e-6; observed -1.25e-6 /
+    // -3.5e-7). Were 1 % and 0.1 %. Float: the plateau sits at a round-off floor that does not
+    // fall (sigma -1.05e-4 / -1.22e-4, density -2.42e-6 / -2.38e-6 at 400 / 800 cells; a
+    // relative rounding of 6e-8 in rho is K / sigma = 48 times that in sigma, per cycle, over
+    // ~1000 cycles of mostly cancelling roundings): bounds 5e-4 and 1e-5, about 4x those.
+    EXPECT_LT(std::abs(err[3]), test::by_precision(1e-4, 5e-4));
+    EXPECT_LT(std::abs(err_rho), test::by_precision(3e-6, 1e-5));
+    // every error falls with resolution (in float the plastic sigma is at its round-off floor)
+    for (int k = 0; k < 4; ++k) {
+      if (k < 3 || !test::kFloat) {
+        EXPECT_LE(std::abs(err[k]), std::abs(prev[k])) << k;
+      }
+    }
     std::copy(err, err + 4, prev);
   }
 }
