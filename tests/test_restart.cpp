@@ -313,7 +313,7 @@ TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
   }
 }
 
-TEST(RestartRefusal, KeepsTheNewestCheckpoints) {
+TEST(Checkpoints, KeepsTheNewest) {
   SharedDir dir;
   auto d = deck("compact");
   d.push_back("time.max_cycles=20");
@@ -335,7 +335,7 @@ TEST(RestartRefusal, KeepsTheNewestCheckpoints) {
   EXPECT_EQ(cycles, (std::vector<long>{16, 20}));
 }
 
-TEST(RestartRefusal, WallClockCheckpointsFollowTheSlowestRank) {
+TEST(Checkpoints, WallClockFollowsTheSlowestRank) {
   // checkpoint_every.seconds: a rank whose clock says a checkpoint is due makes every rank
   // write it; with 1 ns every cycle is due.
   SharedDir dir;
