@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -218,7 +219,14 @@ TEST_F(Cli, GoodRunWritesDumpsAndSummary) {
   EXPECT_EQ(summary["ended_by"], "end time reached") << summary;
   EXPECT_EQ(summary["cells"], (std::vector<int>{40, 2, 2})) << summary;
   const long cycles = summary["cycles"].get<long>();
+  const double time = summary["time"].get<double>();
+  std::printf("  summary: %ld cycles, t = %.17g (end time %.17g)\n", cycles, time,
+              summary["end_time"].get<double>());
   EXPECT_GT(cycles, 0);
+  // the last step is cut to land on the end time exactly (Simulation::run), and JSON keeps 17
+  // significant digits, so the double round-trips
+  EXPECT_EQ(time, 0.02);
+  EXPECT_EQ(summary["end_time"].get<double>(), 0.02);
   EXPECT_TRUE(holds(r.out, "done (end time reached)")) << r.out;
   char last[64];
   std::snprintf(last, sizeof last, "sod_x_%06ld.h5", cycles);
@@ -254,16 +262,38 @@ TEST_F(Cli, NonPhysicalRunExit3WithSummary) {
     EXPECT_NE(e.path().extension(), ".tmp") << e.path();
 }
 
+// The same run on 2 ranks as on 1: the decomposition is bitwise (test_decomp), so the cycle
+// count and end time are equal and the totals agree to the round-off of their sums, whose order
+// follows the ranks: 160 cells x 2.2e-16 = 3.5e-14 relative if every rounding had one sign
+// (bound 5e-14); sqrt(160) x 2.2e-16 = 2.8e-15 for roundings of mixed sign (observed 1.6e-15
+// and 1.8e-15).
 TEST_F(Cli, GoodRunOnTwoRanks) {
   const std::string sod = source_dir() + "/configs/sod_x.yaml";
-  const Result r =
-      run({sod, "--set", "mesh.cells=[40,2,2]", "--set", "time.end=0.02", "--output", "run2"},
-          "mpiexec -np 2 --oversubscribe ");
+  const std::vector<std::string> args = {sod,     "--set",         "mesh.cells=[40,2,2]",
+                                         "--set", "time.end=0.02", "--output"};
+  auto a1 = args, a2 = args;
+  a1.push_back("run1");
+  a2.push_back("run2");
+  ASSERT_EQ(run(a1).status, 0);
+  const Result r = run(a2, "mpiexec -np 2 --oversubscribe ");
   ASSERT_EQ(r.status, 0) << r.out << r.err;
   const auto summary = nlohmann::json::parse(read(dir_ / "run2" / "summary.json"));
+  const auto one = nlohmann::json::parse(read(dir_ / "run1" / "summary.json"));
   EXPECT_EQ(summary["status"], "completed") << summary;
   EXPECT_EQ(summary["ranks"], 2) << summary;
+  EXPECT_EQ(one["ranks"], 1) << one;
   EXPECT_TRUE(fs::exists(dir_ / "run2" / "sod_x.xmf"));
+  std::printf("  2 ranks: %ld cycles, t = %.17g; 1 rank: %ld cycles, t = %.17g\n",
+              summary["cycles"].get<long>(), summary["time"].get<double>(),
+              one["cycles"].get<long>(), one["time"].get<double>());
+  EXPECT_EQ(summary["cycles"], one["cycles"]);
+  EXPECT_EQ(summary["time"], one["time"]);
+  for (const char* key : {"mass", "total_energy"}) {
+    const double x = summary["end"][key].get<double>(), y = one["end"][key].get<double>();
+    std::printf("  end %-12s 2 ranks %.17g, 1 rank %.17g, relative difference %.2g\n", key, x, y,
+                std::abs(x / y - 1));
+    EXPECT_LE(std::abs(x / y - 1), 5e-14) << key;
+  }
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 // Runs on 4 ranks: the 1- and 2-rank runs use sub-communicators of the same job.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <string>
 
 #include "support.hpp"
 
@@ -15,6 +17,7 @@ namespace {
 struct Fields {
   std::vector<double> rho, e, u, v, w;
   std::vector<std::vector<double>> fractions;  // per material (multi-material scenes)
+  std::vector<std::vector<double>> mat_state;  // per material: density, then energy, as stored
   std::vector<std::vector<double>> strength;   // stress deviator and plastic strain (if any)
   std::vector<double> burn;                    // burn fraction (if any)
   long cycles = 0;
@@ -37,8 +40,11 @@ Fields run_on(const Scene& scene, int nranks) {
     f.v = test::gather(m, s.v, Centering::Node);
     f.w = test::gather(m, s.w, Centering::Node);
     if (const mat::MaterialState* mm = r.sim->hydro().materials())
-      for (int q = 0; q < mm->nmat(); ++q)
+      for (int q = 0; q < mm->nmat(); ++q) {
         f.fractions.push_back(test::gather(m, mm->fraction(q), Centering::Cell));
+        for (int which : {1, 2})
+          f.mat_state.push_back(test::gather(m, mm->material_field(q, which), Centering::Cell));
+      }
     if (const strength::Strength* st = r.sim->hydro().strength()) {
       for (const Field3& c : st->stress())
         f.strength.push_back(test::gather(m, c, Centering::Cell));
@@ -77,30 +83,58 @@ void compare_rank_counts(const Scene& scene) {
   const std::vector<double>* a[5] = {&one.rho, &one.e, &one.u, &one.v, &one.w};
   const std::vector<double>* b[5] = {&two.rho, &two.e, &two.u, &two.v, &two.w};
   const std::vector<double>* c[5] = {&four.rho, &four.e, &four.u, &four.v, &four.w};
+  // Every mismatch count is summed into `differ` and printed; each must be 0.
+  long differ = 0;
+  const auto expect_same = [&](const std::vector<double>& x, const std::vector<double>& y,
+                               const std::string& what) {
+    const long n = mismatches(x, y);
+    differ += n < 0 ? 1 : n;
+    EXPECT_EQ(n, 0) << what;
+  };
   for (int f = 0; f < 5; ++f) {
-    EXPECT_EQ(mismatches(*a[f], *b[f]), 0) << names[f] << ": 1 vs 2 ranks";
-    EXPECT_EQ(mismatches(*a[f], *c[f]), 0) << names[f] << ": 1 vs 4 ranks";
+    expect_same(*a[f], *b[f], std::string(names[f]) + ": 1 vs 2 ranks");
+    expect_same(*a[f], *c[f], std::string(names[f]) + ": 1 vs 4 ranks");
   }
   ASSERT_EQ(one.fractions.size(), scene.materials.size() > 1 ? scene.materials.size() : 0u);
   long mixed = 0;
   for (std::size_t q = 0; q < one.fractions.size(); ++q) {
-    EXPECT_EQ(mismatches(one.fractions[q], two.fractions[q]), 0) << "fraction " << q << ": 1 vs 2";
-    EXPECT_EQ(mismatches(one.fractions[q], four.fractions[q]), 0) << "fraction " << q << ": 1 vs 4";
+    expect_same(one.fractions[q], two.fractions[q], "fraction " + std::to_string(q) + ": 1 vs 2");
+    expect_same(one.fractions[q], four.fractions[q], "fraction " + std::to_string(q) + ": 1 vs 4");
     for (double x : one.fractions[q]) mixed += (x > 0 && x < 1) ? 1 : 0;
   }
-  for (std::size_t q = 0; q < one.strength.size(); ++q) {
-    EXPECT_EQ(mismatches(one.strength[q], two.strength[q]), 0) << "strength " << q << ": 1 vs 2";
-    EXPECT_EQ(mismatches(one.strength[q], four.strength[q]), 0) << "strength " << q << ": 1 vs 4";
+  // the materials' own density and energy (what a mixed cell carries besides its fractions)
+  ASSERT_EQ(one.mat_state.size(), 2 * one.fractions.size());
+  for (std::size_t q = 0; q < one.mat_state.size(); ++q) {
+    const std::string what =
+        (q % 2 ? "energy of material " : "density of material ") + std::to_string(q / 2);
+    expect_same(one.mat_state[q], two.mat_state[q], what + ": 1 vs 2");
+    expect_same(one.mat_state[q], four.mat_state[q], what + ": 1 vs 4");
   }
-  EXPECT_EQ(mismatches(one.burn, two.burn), 0) << "burn fraction: 1 vs 2";
-  EXPECT_EQ(mismatches(one.burn, four.burn), 0) << "burn fraction: 1 vs 4";
+  expect_same(one.burn, two.burn, "burn fraction: 1 vs 2");
+  expect_same(one.burn, four.burn, "burn fraction: 1 vs 4");
+  double eps_max = 0;
+  for (std::size_t q = 0; q < one.strength.size(); ++q) {
+    expect_same(one.strength[q], two.strength[q], "strength " + std::to_string(q) + ": 1 vs 2");
+    expect_same(one.strength[q], four.strength[q], "strength " + std::to_string(q) + ": 1 vs 4");
+  }
+  if (!one.strength.empty())
+    for (double x : one.strength.back()) eps_max = std::max(eps_max, x);  // plastic strain
+  char plastic[64] = "";
+  if (!one.strength.empty())
+    std::snprintf(plastic, sizeof plastic, ", largest plastic strain %.3e", eps_max);
   std::printf(
-      "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end; 1, 2, "
-      "4 ranks bitwise identical in %zu fields\n",
-      scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed,
-      5 + one.fractions.size() + one.strength.size() + (one.burn.empty() ? 0 : 1));
+      "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end%s; 1 vs 2 "
+      "and 1 vs 4 ranks over %zu fields: %ld values differ\n",
+      scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed, plastic,
+      5 + one.fractions.size() + one.mat_state.size() + one.strength.size() +
+          (one.burn.empty() ? 0 : 1),
+      differ);
   if (!one.fractions.empty()) {
     EXPECT_GT(mixed, 0);
+  }
+  // A strength scene must have yielded, or the plastic strain compared above is all zeros.
+  if (!one.strength.empty()) {
+    EXPECT_GT(eps_max, 0.0);
   }
 }
 

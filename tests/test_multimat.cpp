@@ -7,12 +7,14 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "config/deck.hpp"
 #include "exact/isentrope_riemann.hpp"
+#include "exact/norms.hpp"
 #include "exact/riemann.hpp"
 #include "materials/library.hpp"
 #include "support.hpp"
@@ -79,49 +81,93 @@ void expect_layouts_agree(const std::string& deck, const std::vector<std::string
 
 }  // namespace
 
-TEST(MultiMaterial, TwoMaterialSodMatchesExactSolution) {
-  const Scene scene = test::load_scene("sod2.yaml");
-  auto r = test::run_scene(scene);
-  ASSERT_TRUE(r.result.ok);
+namespace {
+
+// The two-material shock tube (configs/sod2.yaml) at n cells along x against the exact
+// two-gamma Riemann solution: L1 of density and pressure (tests/exact/norms.hpp), the interface
+// (the driver's volume per unit area) against the exact contact, the mixed-cell count.
+struct Sod2 {
+  double l1, l1p, interface, contact, dx, p_min;
+  int mixed;
+  long cycles;
+};
+
+Sod2 run_sod2(int n) {
+  auto r = test::run_scene(
+      test::load_scene("sod2.yaml", {"mesh.cells=[" + std::to_string(n) + ",2,2]"}));
+  EXPECT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
   const auto p = test::gather(m, r.sim->hydro().state().p, Centering::Cell);
   const auto frac = test::gather(m, r.sim->hydro().materials()->fraction(0), Centering::Cell);
   const exact::Riemann rs({1.0, 0.0, 1.0}, {0.125, 0.0, 0.1}, 1.4, 1.667);
-  const int nx = m.global_cells(0);
   const double dx = m.dx(0), t = 0.2, x0 = 0.5;
-  double l1 = 0, l1p = 0, driver_volume = 0;
-  for (int i = 0; i < nx; ++i) {
-    const double x = (i + 0.5) * dx;
-    const auto ex = rs.sample((x - x0) / t);
-    l1 += std::abs(rho[i] - ex.rho) * dx;
-    l1p += std::abs(p[i] - ex.p) * dx;
-    driver_volume += frac[i] * dx;
-    EXPECT_GT(p[i], 0) << "cell " << i;
+  Sod2 s{0, 0, 0, x0 + rs.u_star() * t, dx, 1e300, 0, r.result.cycles};
+  std::vector<double> x(n), rho_x(n), p_x(n);
+  for (int i = 0; i < n; ++i) {
+    x[i] = (i + 0.5) * dx;
+    rho_x[i] = rho[i];
+    p_x[i] = p[i];
+    s.interface += frac[i] * dx;  // the driver fills [0, interface)
+    s.mixed += (frac[i] > 0 && frac[i] < 1) ? 1 : 0;
+    s.p_min = std::min(s.p_min, p[i]);
   }
-  const double contact = x0 + rs.u_star() * t;
-  // the driver fills [0, interface): its volume per unit area is the interface position
-  const double interface = driver_volume;
-  int mixed = 0;
-  for (int i = 0; i < nx; ++i) mixed += (frac[i] > 0 && frac[i] < 1) ? 1 : 0;
+  s.l1 = exact::l1_density(x, rho_x, dx, rs, x0, t);
+  s.l1p = exact::l1_pressure(x, p_x, dx, rs, x0, t);
   std::printf(
-      "two-material Sod (gamma 1.4 | 1.667), %d cells: L1(rho) %.4e, L1(p) %.4e; interface "
-      "%.5f vs exact contact %.5f (%.2f cells); %d mixed cells; p* %.5f u* %.5f\n",
-      nx, l1, l1p, interface, contact, (interface - contact) / dx, mixed, rs.p_star(), rs.u_star());
-  // The L1 bounds are the single-material scheme's error at this resolution, whose convergence
-  // Sod.ConvergesToExactSolution verifies (2.9e-3 at 200 cells, the geometric mean of its 5.40e-3
-  // at 100 and 1.53e-3 at 400), with 40 % for the second material: a mixed-cell closure that added
-  // error of the size of the scheme's own would fail. Observed 1.89e-3 (rho, 2.1x below) and
-  // 2.05e-3 (p, 1.46x below).
-  EXPECT_LT(l1, 4.0e-3);
-  EXPECT_LT(l1p, 3.0e-3);
-  // Interface at the exact contact: observed -0.05 cells. A quarter cell (5x) is a contact
-  // speed error of 0.25 dx / t = 0.7 % of u*, the size of the star-state bounds of the
-  // water-air test; was 2 cells (40x the observation, a speed error of 5.5 %).
-  EXPECT_LT(std::abs(interface - contact), 0.25 * dx);
-  // the interface stays sharp: a plane between two cells is at most one mixed cell, two while
-  // it crosses a face in a step (observed count printed)
-  EXPECT_LE(mixed, 2);
+      "two-material Sod (gamma 1.4 | 1.667), %d cells, %ld cycles: L1(rho) %.4e, L1(p) %.4e; "
+      "interface %.5f vs exact contact %.5f (%+.2f cells); %d mixed cells; min p %.4f; p* %.5f "
+      "u* %.5f\n",
+      n, s.cycles, s.l1, s.l1p, s.interface, s.contact, (s.interface - s.contact) / dx, s.mixed,
+      s.p_min, rs.p_star(), rs.u_star());
+  return s;
+}
+
+}  // namespace
+
+// The two-material shock tube against its exact solution at 100, 200 and 400 cells: the L1
+// errors fall at first order, the interface stays at the exact contact and sharp.
+TEST(MultiMaterial, TwoMaterialSodConvergesToExactSolution) {
+  const int sizes[3] = {100, 200, 400};
+  Sod2 s[3];
+  for (int k = 0; k < 3; ++k) s[k] = run_sod2(sizes[k]);
+  double order[2][2];
+  for (int k = 0; k < 2; ++k) {
+    order[0][k] = std::log2(s[k].l1 / s[k + 1].l1);
+    order[1][k] = std::log2(s[k].l1p / s[k + 1].l1p);
+  }
+  std::printf("two-material Sod observed orders: L1(rho) %.3f %.3f, L1(p) %.3f %.3f (floor 0.6)\n",
+              order[0][0], order[0][1], order[1][0], order[1][1]);
+  // Order. Both discontinuities are held to O(dx): the shock is captured in a fixed number of
+  // cells and the interface reconstruction keeps the contact, a material interface here, to
+  // one or two mixed cells, so the L1 errors are first order (observed 1.03, 0.96 for rho;
+  // 1.01, 0.98 for p; 0.88 and 0.92 from 400 to 800 cells, not run here). The floor 0.6 is
+  // Sod.ConvergesToExactSolution's, and lies above the 1/2 of a contact smeared by first-order
+  // advection: an interface that began to smear would fail it.
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_GT(order[0][k], 0.6) << sizes[k] << " -> " << sizes[k + 1];
+    EXPECT_GT(order[1][k], 0.6) << sizes[k] << " -> " << sizes[k + 1];
+  }
+  // Accuracy at the finest resolution, against the single-material scheme on Sod's states at
+  // 400 cells (sod_x.yaml, measured 2026-12-01: L1(rho) 1.53e-3, L1(p) 9.86e-4).
+  // Density: no worse than the single fluid, whose error is mostly the smeared contact that a
+  // material interface does not have; observed 9.71e-4 (1.55x below 1.5e-3). Pressure is
+  // continuous across the contact, so both problems' L1(p) come from the same shock and
+  // rarefaction: the bound is the single fluid's plus half (a mixed-cell closure adding a
+  // pressure error of half the scheme's own fails); observed 1.04e-3 (1.44x below 1.5e-3).
+  // Was one resolution (200 cells) with bounds 4e-3 and 3e-3 (2.1x, 1.46x).
+  EXPECT_LT(s[2].l1, 1.5e-3);
+  EXPECT_LT(s[2].l1p, 1.5e-3);
+  for (const Sod2& r : s) {
+    // Interface at the exact contact: observed -0.05 cells at 200. A quarter cell is a contact
+    // speed error of 0.25 dx / t = 0.7 % of u* at 200 cells, the size of the star-state
+    // bounds of the water-air test (and 1.4 % at 100, 0.35 % at 400).
+    EXPECT_LT(std::abs(r.interface - r.contact), 0.25 * r.dx) << r.dx;
+    // the interface stays sharp: a plane between two cells is at most one mixed cell, two
+    // while it crosses a face in a step
+    EXPECT_LE(r.mixed, 2) << r.dx;
+    EXPECT_GT(r.p_min, 0) << r.dx;
+  }
 }
 
 TEST(MultiMaterial, SphereAdvectionYoungsBeatsSlicAndConverges) {
@@ -474,6 +520,18 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
   }
 }
 
+// One water-air run per closure and resolution, shared by the two tests below.
+const WaterAir& water_air(const std::string& closure, int cells) {
+  static std::map<std::pair<std::string, int>, WaterAir> runs;
+  const auto key = std::make_pair(closure, cells);
+  auto it = runs.find(key);
+  if (it == runs.end())
+    it = runs.emplace(key, run_water_air({"numerics.closure=" + closure,
+                                          "mesh.cells=[" + std::to_string(cells) + ",2,2]"}))
+             .first;
+  return it->second;
+}
+
 // The water-air criterion as issue #16 restates it: the star state and the interface against
 // the exact solution, no negative pressure in the air and the interface cells, and pure-water
 // tension bounded by 5 % of the initial water pressure at 200 cells (the exact solution has
@@ -481,11 +539,11 @@ TEST(MultiMaterial, TensionCutoffHoldsPressureAtPmin) {
 TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
   // Observed at 200 cells (double): equal strain p -0.25 %, u +0.11 %, air e error 62 %,
   // shock +2.35 cells, interface +0.02 cells; relaxation p +0.08 %, u +0.09 %, air e error
-  // 11 %, shock +0.46 cells, interface +0.03 cells; 1 mixed cell each. No exact-solution trend
-  // is run here (two resolutions cost 2 x 5 min on 2 cores): the star-state bounds are the
-  // accuracy issue #16 records for this problem (p*, u* within 0.3 %), with margin.
-  const WaterAir es = run_water_air({"numerics.closure=equal_strain"});
-  const WaterAir rx = run_water_air({"numerics.closure=relaxation"});
+  // 11 %, shock +0.46 cells, interface +0.03 cells; 1 mixed cell each. The star-state bounds
+  // here are the accuracy issue #16 records for this problem (p*, u* within 0.3 %), with
+  // margin; WaterAirStarStateConverges shows the errors falling from 200 to 400 cells.
+  const WaterAir& es = water_air("equal_strain", 200);
+  const WaterAir& rx = water_air("relaxation", 200);
   for (const WaterAir* w : {&es, &rx}) {
     const char* name = w == &es ? "equal strain" : "relaxation";
     EXPECT_TRUE(w->finite) << name;
@@ -527,6 +585,39 @@ TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
   EXPECT_LT(std::abs(rx.shock - rx.shock_exact), 1 * rx.dx);
   EXPECT_LT(std::abs(es.shock - es.shock_exact), 3 * es.dx);
   EXPECT_LT(rx.l1u, es.l1u);
+}
+
+// The water-air star state against the exact solution at 200 and 400 cells, both closures:
+// the errors of the star velocity (mean over the star region) and the star pressure (mean of
+// the shocked air) printed at each, falling, and bounded at 400 cells.
+TEST(MultiMaterial, WaterAirStarStateConverges) {
+  for (const std::string closure : {"equal_strain", "relaxation"}) {
+    const WaterAir& c = water_air(closure, 200);
+    const WaterAir& f = water_air(closure, 400);
+    const double uc = std::abs(c.u_mean / c.u_star - 1), uf = std::abs(f.u_mean / f.u_star - 1);
+    const double pc = std::abs(c.p_air / c.p_star - 1), pf = std::abs(f.p_air / f.p_star - 1);
+    std::printf(
+        "water-air %s, 200 -> 400 cells: |u/u* - 1| %.4f %% -> %.4f %% (ratio %.3f), "
+        "|p/p* - 1| %.4f %% -> %.4f %% (ratio %.3f)\n",
+        closure.c_str(), 100 * uc, 100 * uf, uf / uc, 100 * pc, 100 * pf, pf / pc);
+    // Falling. The star velocity converges at order 0.6 to 0.8 (measured 2026-12-01 at 100,
+    // 200, 400, 800 cells: equal strain +0.158, +0.114, +0.075, +0.042 %; relaxation +0.107,
+    // +0.090, +0.060, +0.032 %): the plateau mean carries the start-up error of the sharp
+    // diaphragm, which decays slowly. Observed ratios 0.66 and 0.67; the bound 0.8 (order
+    // 0.32), 1.2x above them, says the error falls by more than the plateau's noise, not at a
+    // rate. The shocked-air pressure error crosses zero between 200 and 400 cells (equal
+    // strain -0.25 % -> +0.0036 % -> +0.014 % at 800; relaxation +0.08 % -> +0.0012 % ->
+    // -0.004 %), so its observed ratios (0.014, 0.015) are not a rate; the same 0.8 is
+    // asserted.
+    EXPECT_LT(uf, 0.8 * uc) << closure;
+    EXPECT_LT(pf, 0.8 * pc) << closure;
+    // At 400 cells: #16's 0.3 % at 200 cells carried to 400 at first order, 0.15 %. Observed
+    // u 0.075 %, 0.060 % (2.0x, 2.5x below); p 0.0036 %, 0.0012 % (42x, 125x below: the zero
+    // crossing above; the 800-cell values, 0.014 % and 0.004 %, show the plateau mean's level
+    // of noise, and a bound near them would pin this code's crossing, not its accuracy).
+    EXPECT_LT(uf, 0.0015) << closure;
+    EXPECT_LT(pf, 0.0015) << closure;
+  }
 }
 
 // The exact solver for an arbitrary-EOS left state (tests/exact/isentrope_riemann.hpp) against
@@ -691,46 +782,92 @@ ProductsAir run_products_air(const std::vector<std::string>& overrides) {
 
 }  // namespace
 
-// One run of each products-air variant, shared by the verification and the pin below.
-const ProductsAir& products_air(bool ke_fix) {
-  static const ProductsAir on = run_products_air({"numerics.closure=equal_strain"});
-  static const ProductsAir off =
-      run_products_air({"numerics.closure=equal_strain", "numerics.ke_fix=false"});
-  return ke_fix ? on : off;
+// One run of each products-air variant, shared by the verification and the pin below: the
+// deck's 400 cells with the KE fix on and off, and 800 cells with it on.
+const ProductsAir& products_air(bool ke_fix, int cells = 400) {
+  static std::map<std::pair<bool, int>, ProductsAir> runs;
+  const auto key = std::make_pair(ke_fix, cells);
+  auto it = runs.find(key);
+  if (it == runs.end())
+    it = runs.emplace(key, run_products_air(
+                               {"numerics.closure=equal_strain",
+                                std::string("numerics.ke_fix=") + (ke_fix ? "true" : "false"),
+                                "mesh.cells=[" + std::to_string(cells) + ",2,2]"}))
+             .first;
+  return it->second;
 }
 
 TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
   const ProductsAir& es = products_air(true);
   const ProductsAir& nk = products_air(false);
-  for (const ProductsAir* w : {&es, &nk}) {
-    const char* name = w == &es ? "KE fix on" : "KE fix off";
+  const ProductsAir& fine = products_air(true, 800);
+  for (const ProductsAir* w : {&es, &nk, &fine}) {
+    const char* name = w == &es ? "KE fix on" : w == &nk ? "KE fix off" : "KE fix on, 800 cells";
     EXPECT_TRUE(w->finite) << name;
     EXPECT_GT(w->rho_min, 0) << name;
     EXPECT_GT(w->e_min, 0) << name;
     EXPECT_GT(w->p_min, 0) << name;
-    // Masses to round-off: a rounding per cell in each of 3 remap sweeps of ~500 cycles,
-    // 3 x 535 x 2.2e-16 = 3.5e-13 if all of one sign; observed 5.2e-15 to 6.5e-15 (mixed
-    // signs cancel). The air's bound was 1e-12 (170x).
+    // Masses to round-off: a rounding per cell in each of 3 remap sweeps, 3 x 535 x 2.2e-16 =
+    // 3.5e-13 at 400 cells (6.5e-13 for the 981 cycles at 800) if all of one sign; observed
+    // 4.9e-15 to 8.5e-15 at 400 cells, 1.1e-14 and 1.7e-14 at 800 (mixed signs cancel, the
+    // sum grows as the square root of the roundings). The air's bound was 1e-12 (170x).
     EXPECT_LT(std::abs(w->dm_products), test::roundoff(1e-13)) << name;
     EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-13)) << name;
   }
-  // Star state (observed at 400 cells: KE fix on p +3.0 %, u +2.2 %; off p -5.1 %, u +0.7 %,
-  // its shocked air still short of the plateau for the energy it lost). The exact star state
-  // is the reference, but at one resolution and with the products' known over-expansion (the
-  // pin below) in the run, so these bounds are margins of 1.4x to 2.9x on the observations,
-  // not accuracy claims; a convergence study waits on issue #16.
-  EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.05);
-  EXPECT_LT(std::abs(es.u_mean / es.u_star - 1), 0.04);
-  EXPECT_LT(std::abs(nk.p_air / nk.p_star - 1), 0.07);
-  EXPECT_LT(std::abs(nk.u_mean / nk.u_star - 1), 0.02);
+}
+
+// The products-air star state against the exact solution at 400 and 800 cells (KE fix on, the
+// default numerics): the star velocity (mean over the star region) and pressure (mean of the
+// shocked air), the expanded products' density and the interface offset, each printed at both
+// resolutions and falling. Measured (2026-12-01) at 200, 400, 800, 1600 cells: u +4.7, +2.2,
+// +0.6, +0.1 %; p +2.6, +3.0, -0.7, -0.4 %; products density -34.1, -29.5, -16.2, -7.4 %;
+// interface +0.34, +0.245, +0.129, +0.062 cm.
+TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
+  const ProductsAir& c = products_air(true, 400);
+  const ProductsAir& f = products_air(true, 800);
+  const auto rel = [](double a, double b) { return std::abs(a / b - 1); };
+  const double uc = rel(c.u_mean, c.u_star), uf = rel(f.u_mean, f.u_star);
+  const double pc = rel(c.p_air, c.p_star), pf = rel(f.p_air, f.p_star);
+  const double rc = rel(c.rho_products, c.rho_star), rf = rel(f.rho_products, f.rho_star);
+  const double ic = std::abs(c.interface - c.contact), iff = std::abs(f.interface - f.contact);
+  std::printf(
+      "products-air, 400 -> 800 cells: |u/u* - 1| %.2f %% -> %.2f %% (ratio %.2f), |p/p* - 1| "
+      "%.2f %% -> %.2f %% (ratio %.2f), |rho/rho* - 1| %.1f %% -> %.1f %% (ratio %.2f), "
+      "interface offset %.3f -> %.3f cm (ratio %.2f)\n",
+      100 * uc, 100 * uf, uf / uc, 100 * pc, 100 * pf, pf / pc, 100 * rc, 100 * rf, rf / rc, ic,
+      iff, iff / ic);
+  // Star velocity and pressure: first order would halve them; the bound 0.7 (order 1/2)
+  // allows the slower start of the 200 -> 400 step (u ratio 0.47, p none: +2.6 -> +3.0 %).
+  // Observed 0.27 (u) and 0.23 (p, whose error changes sign on the way and then keeps
+  // falling: -0.4 % at 1600 cells).
+  EXPECT_LT(uf, 0.7 * uc);
+  EXPECT_LT(pf, 0.7 * pc);
+  // At 800 cells: the 400-cell margins of this test before it ran two resolutions (5 % for p,
+  // 4 % for u) carried to 800 at first order, 2.5 % and 2 %. Observed 0.71 % and 0.57 %
+  // (3.5x below each).
+  EXPECT_LT(pf, 0.025);
+  EXPECT_LT(uf, 0.02);
+  // The products' over-expansion (MultiMaterialRegressionPin.ProductsIntoAirOverExpansion) is
+  // an error that converges: density and interface offset fall at order 0.86 and 0.93 from 400
+  // to 800 (ratios 0.55, 0.53), more slowly from 200 to 400 (0.87, 0.72). The bound 0.75
+  // (order 0.42) says they fall; it is not met from 200 to 400 for the density, which is why
+  // this runs 400 and 800. The density error at 800 cells, 16 %, is still above issue #16's
+  // 10 % (met at 1600: 7.4 %).
+  EXPECT_LT(rf, 0.75 * rc);
+  EXPECT_LT(iff, 0.75 * ic);
 }
 
 // A regression pin of a known defect, not a verification (issue #16 open; docs/numerics.md,
 // "Products into air"): the start-up overshoot of the velocity at the rarefaction tail is
 // damped by the remap, and the KE fix returns that loss as heat to the expanded products, which
 // over-expand: with the KE fix the interface runs 7.0 cells ahead and the products' star
-// density is 29.5 % low (exact solution: 0); without it 1.7 cells and 11.5 % (but energy is not
+// density is 29.5 % low at 400 cells (exact solution: 0; it falls with resolution, see
+// ProductsIntoAirStarStateConverges); without it 1.7 cells and 11.5 % (but energy is not
 // conserved). The bounds hold these near their present values so that a change shows.
+// The KE-fix-off star state is pinned here too, not verified: observed at 400 cells p -5.1 %,
+// u +0.7 % (its shocked air short of the plateau for the energy it lost), but it does not
+// converge: at 200 / 400 / 800 cells p -5.4 / -5.1 / -16.3 %, u +1.2 / +0.7 / -5.9 % (measured
+// 2026-12-01). Its bounds (7 %, 2 %) were in the verification test before.
 TEST(MultiMaterialRegressionPin, ProductsIntoAirOverExpansion) {
   const ProductsAir& es = products_air(true);
   const ProductsAir& nk = products_air(false);
@@ -738,6 +875,8 @@ TEST(MultiMaterialRegressionPin, ProductsIntoAirOverExpansion) {
   EXPECT_LT(std::abs(nk.interface - nk.contact), 3 * nk.dx);
   EXPECT_LT(std::abs(es.rho_products / es.rho_star - 1), 0.35);
   EXPECT_LT(std::abs(nk.rho_products / nk.rho_star - 1), 0.15);
+  EXPECT_LT(std::abs(nk.p_air / nk.p_star - 1), 0.07);
+  EXPECT_LT(std::abs(nk.u_mean / nk.u_star - 1), 0.02);
 }
 
 namespace {

@@ -128,8 +128,11 @@ TEST_F(Output, FinalDumpSummaryAndXdmfMatchTheRun) {
     for (int d = 0; d < 3; ++d)
       EXPECT_EQ(std::stoi((*it)[3 - d]), spec.cells[d] + 1) << "axis " << d;
   }
+  // (each loop counts its matches: a pattern that matched nothing would check nothing)
+  int origins = 0, spacings = 0;
   for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), origin); it != std::sregex_iterator();
        ++it) {
+    ++origins;
     std::istringstream is((*it)[1]);
     double z, y, x;
     is >> z >> y >> x;
@@ -139,14 +142,18 @@ TEST_F(Output, FinalDumpSummaryAndXdmfMatchTheRun) {
   }
   for (auto it = std::sregex_iterator(xmf.begin(), xmf.end(), spacing);
        it != std::sregex_iterator(); ++it) {
+    ++spacings;
     std::istringstream is((*it)[1]);
     double h[3];
     is >> h[2] >> h[1] >> h[0];
     for (int d = 0; d < 3; ++d) EXPECT_EQ(h[d], (spec.hi[d] - spec.lo[d]) / spec.cells[d]);
   }
-  std::printf("  xdmf: %d grids, %zu dumps listed in the summary\n", grids,
-              summary["files"].size());
+  std::printf(
+      "  xdmf: %d grids (%d origins, %d spacings checked), %zu dumps listed in the summary\n",
+      grids, origins, spacings, summary["files"].size());
   EXPECT_EQ(grids, static_cast<int>(summary["files"].size()));
+  EXPECT_EQ(origins, grids);
+  EXPECT_EQ(spacings, grids);
   EXPECT_EQ(grids, 2);  // first and last (output.interval 0)
   // the velocity also as one vector, joined from its three datasets, once per grid
   const std::regex vec(

@@ -515,11 +515,13 @@ TEST(EpPiston, JumpConditionsHoldAcrossBothWaves) {
     const double bound = 16 * DBL_EPSILON / (c.m.Y / (2 * c.m.G));
     std::printf(
         "  residuals: elastic mass %.1e mom %.1e energy %.1e | plastic mass %.1e mom "
-        "%.1e energy %.1e | EOS %.1e (bounds %.1e, 1e-12)\n",
+        "%.1e energy %.1e | EOS %.1e (bounds %.1e, 1e-13)\n",
         mass_e, mom_e, en_e, mass_p, mom_p, en_p, eos, bound);
     for (double r : {mass_e, mom_e, en_e, mass_p, mom_p, en_p}) EXPECT_LT(std::abs(r), bound);
-    // bisection to 4e-16 in rho_2, times rho dp/drho / p (~60 here): 1e-12
-    EXPECT_LT(std::abs(eos), 1e-12);
+    // bisection to 4e-16 in rho_2, times rho dp/drho / p = K / p2 (55 aluminium, 79 copper):
+    // 2.2e-14 and 3.2e-14 (observed 7.2e-16 and 2.4e-14); bound 1e-13. Was 1e-12, whose
+    // comment gave the same estimate.
+    EXPECT_LT(std::abs(eos), 1e-13);
     EXPECT_GT(ue, up);
     EXPECT_GT(up, c.up);
     // sample: the three regions in order
@@ -550,8 +552,13 @@ TEST(EpPiston, LinearElasticLimit) {
         "%.3e)\n",
         mi.Y, ep.hel(), hel_lin, dev_hel[i], ep.elastic_speed(), cl, dev_c[i]);
   }
-  EXPECT_NEAR(dev_hel[0] / dev_hel[1], 10.0, 2.0);
-  EXPECT_NEAR(dev_c[0] / dev_c[1], 10.0, 2.0);
+  std::printf("deviation ratios Y / (Y/10): HEL %.4f, U_e %.4f (first order: 10)\n",
+              dev_hel[0] / dev_hel[1], dev_c[0] / dev_c[1]);
+  // With deviation a eta + b eta^2 (eta = Y/(2G) = 4.5e-3, b ~ s = 1.34) the ratio is
+  // 10 (1 + 0.9 b eta) = 10.05: within 2 % (0.2) is 4x that second-order term. Observed
+  // 10.05 and 10.03. Was 20 %.
+  EXPECT_NEAR(dev_hel[0] / dev_hel[1], 10.0, 0.2);
+  EXPECT_NEAR(dev_c[0] / dev_c[1], 10.0, 0.2);
   // and at the ExactPack amplitude (Y/(2G) = 0.45 %), within 3 s Y/(2G) = 1.8 %
   EXPECT_LT(std::abs(dev_hel[0]), 3 * m.s * m.Y / (2 * m.G));
   EXPECT_LT(std::abs(dev_c[0]), 3 * m.s * m.Y / (2 * m.G));

@@ -55,23 +55,33 @@ double front(const Line& l, double level) {
   return NAN;
 }
 
-// Speed of the elastic wave relative to the material, bar moving at -v0 onto the wall.
-double wave_speed(int cells, const std::vector<std::string>& extra) {
+// Speed of the elastic wave relative to the material, bar moving at -v0 onto the wall, and the
+// relative speed error that half a cell of front position makes (0.5 dx / (c t)).
+struct Wave {
+  double c, half_cell;
+};
+
+Wave wave_speed(int cells, const std::vector<std::string>& extra) {
   std::vector<std::string> o = {"mesh.cells=[" + std::to_string(cells) + ",2,2]"};
   o.insert(o.end(), extra.begin(), extra.end());
   auto r = test::run_scene(test::load_scene("elastic_wave.yaml", o));
   EXPECT_TRUE(r.result.ok) << r.result.health.what;
   const Line l = line_x(r);
   const double v0 = 1e-4;
-  return front(l, -0.5 * v0) / l.t + v0;
+  const double c = front(l, -0.5 * v0) / l.t + v0;
+  return {c, 0.5 * l.dx / (c * l.t)};
 }
 
 }  // namespace
 
 // A small-amplitude pulse travels at the longitudinal speed sqrt((K + 4/3 G)/rho) with
 // strength, and at the bulk speed with G = 0 (yield 0 here: the deviator is returned to zero).
-// The front is where the velocity crosses half its jump; the bound, 1 % (the issue's), is 8x
-// the error observed at 400 cells (-0.12 %) and it falls at 800.
+// The front is where the velocity crosses half its jump. A small-amplitude wave's ramp is
+// symmetric about that crossing, so it locates the front to half a cell: the bound is the
+// speed error of half a cell of position, 0.5 dx / (c t) = 0.39 % (0.48 % bulk) at 400 cells
+// and half that at 800. Observed -0.123 % and -0.093 % (3.2x, 2.1x below), bulk -0.109 % and
+// -0.087 % (4.4x, 2.8x), Steinberg-Guinan -0.117 % (3.3x); the longitudinal error falls.
+// Was 1 % (the issue's) at both, 8x to 11x the observations.
 TEST(StrengthCycle, ElasticWaveAtTheLongitudinalAndBulkSpeeds) {
   const double K = kRho0 * kC0 * kC0;
   const double c_long = std::sqrt((K + 4.0 / 3.0 * kG) / kRho0), c_bulk = kC0;
@@ -83,22 +93,24 @@ TEST(StrengthCycle, ElasticWaveAtTheLongitudinalAndBulkSpeeds) {
                                          "materials.0.strength.shear_modulus=0.276"};
   double err_prev = 1;
   for (int n : {400, 800}) {
-    const double c = wave_speed(n, plain), cb = wave_speed(n, no_g);
+    const Wave w = wave_speed(n, plain), wb = wave_speed(n, no_g);
+    const double c = w.c, cb = wb.c;
     const double e = c / c_long - 1, eb = cb / c_bulk - 1;
     std::printf(
-        "elastic wave, %d cells: %.6f vs longitudinal %.6f (%+.3f %%); G = 0: %.6f vs bulk "
-        "%.6f (%+.3f %%)\n",
-        n, c, c_long, 100 * e, cb, c_bulk, 100 * eb);
-    EXPECT_LT(std::abs(e), 0.01);
-    EXPECT_LT(std::abs(eb), 0.01);
+        "elastic wave, %d cells: %.6f vs longitudinal %.6f (%+.3f %%, bound %.3f %%); G = 0: "
+        "%.6f vs bulk %.6f (%+.3f %%, bound %.3f %%)\n",
+        n, c, c_long, 100 * e, 100 * w.half_cell, cb, c_bulk, 100 * eb, 100 * wb.half_cell);
+    EXPECT_LT(std::abs(e), w.half_cell);
+    EXPECT_LT(std::abs(eb), wb.half_cell);
     EXPECT_LT(std::abs(e), err_prev);
     err_prev = std::abs(e);
   }
   // Steinberg-Guinan (the deck's model): G(p, T) at the nearly undisturbed state is G0 within
-  // 1e-3, so the same speed to 1 %.
-  const double csg = wave_speed(400, {});
-  std::printf("elastic wave, Steinberg-Guinan: %.6f (%+.3f %%)\n", csg, 100 * (csg / c_long - 1));
-  EXPECT_LT(std::abs(csg / c_long - 1), 0.01);
+  // 1e-3, so the same speed to the same half cell.
+  const Wave sg = wave_speed(400, {});
+  std::printf("elastic wave, Steinberg-Guinan: %.6f (%+.3f %%, bound %.3f %%)\n", sg.c,
+              100 * (sg.c / c_long - 1), 100 * sg.half_cell);
+  EXPECT_LT(std::abs(sg.c / c_long - 1), sg.half_cell);
 }
 
 // The elastic-plastic piston (uniaxial strain, constant yield): the bar moves at -u_p onto a
@@ -146,18 +158,41 @@ TEST(StrengthCycle, ElasticPlasticPistonMatchesTheExactSolution) {
     const double sig2 = mean(sig, 0.1 * w_p, 0.9 * w_p);
     const double err[4] = {ue / ex.elastic_speed() - 1, upl / ex.plastic_speed() - 1,
                            hel / ex.hel() - 1, sig2 / pl.sigma() - 1};
+    const double err_rho = rho2 / pl.rho - 1;
+    // the speed error that one cell of front position makes, dx / (U t), for each front
+    const double cell_e = l.dx / (ex.elastic_speed() * t), cell_p = l.dx / (ex.plastic_speed() * t);
     std::printf(
-        "EP piston, %d cells, t = %.2f: U_e %.6f (%+.3f %%), U_p %.6f (%+.3f %%), HEL "
-        "%.6e (%+.3f %%), plastic rho %.6f (%+.4f %%), sigma %.6e (%+.3f %%)\n",
-        n, t, ue, 100 * err[0], upl, 100 * err[1], hel, 100 * err[2], rho2,
-        100 * (rho2 / pl.rho - 1), sig2, 100 * err[3]);
-    // Front speeds within 1 % (half a cell of front position is 0.2 % here), states within
-    // 1 %: the plateaus of a shock-capturing scheme (observed below 0.3 %).
-    for (double e : err) EXPECT_LT(std::abs(e), 0.01);
-    EXPECT_LT(std::abs(rho2 / pl.rho - 1), 0.001);
-    // the front speeds converge (the plateaus sit at their exact values to round-off level)
-    EXPECT_LE(std::abs(err[0]), std::abs(prev[0]));
-    EXPECT_LE(std::abs(err[1]), std::abs(prev[1]));
+        "EP piston, %d cells, t = %.2f: U_e %.6f (%+.3f %%, bound %.3f %%), U_p %.6f (%+.3f %%, "
+        "bound %.3f %%), HEL %.6e (%+.3f %%), plastic rho %.6f (%+.2e), sigma %.6e (%+.2e)\n",
+        n, t, ue, 100 * err[0], 100 * cell_e, upl, 100 * err[1], 100 * cell_p, hel, 100 * err[2],
+        rho2, err_rho, sig2, err[3]);
+    // Fronts: a captured shock's mid-level crossing locates it to a cell (the ramps of these
+    // nonlinear waves are not symmetric about it, unlike the small-amplitude wave above): the
+    // bound is the speed error of one cell of position, dx / (U t) = 0.31 % (precursor) and
+    // 0.37 % (plastic shock) at 400 cells, half that at 800. Observed +0.090 % / +0.032 % (3.4x,
+    // 4.8x below) and -0.154 % / -0.074 % (2.4x, 2.5x). Was 1 %.
+    EXPECT_LT(std::abs(err[0]), cell_e);
+    EXPECT_LT(std::abs(err[1]), cell_p);
+    // The HEL is the plateau the precursor leaves and carries its start-up error: bounded by
+    // the precursor's one-cell figure, observed +0.096 % / +0.013 % (3.2x, 12x below: it falls
+    // faster than first order, asserted below). Was 1 %.
+    EXPECT_LT(std::abs(err[2]), cell_e);
+    // The plastic state behind the piston follows from the jump conditions, which the
+    // conservative scheme keeps, so its plateau is exact but for the wall's start-up transient:
+    // sigma within 1e-4 (observed -4.05e-5 / -9.8e-6); the density moves by sigma / K of that
+    // (K = rho0 c0^2 = 0.742 Mbar, sigma = 0.0156 Mbar: 2.1e-6; bound 3e-6; observed -1.25e-6 /
+    // -3.5e-7). Were 1 % and 0.1 %. Float: the plateau sits at a round-off floor that does not
+    // fall (sigma -1.05e-4 / -1.22e-4, density -2.42e-6 / -2.38e-6 at 400 / 800 cells; a
+    // relative rounding of 6e-8 in rho is K / sigma = 48 times that in sigma, per cycle, over
+    // ~1000 cycles of mostly cancelling roundings): bounds 5e-4 and 1e-5, about 4x those.
+    EXPECT_LT(std::abs(err[3]), test::by_precision(1e-4, 5e-4));
+    EXPECT_LT(std::abs(err_rho), test::by_precision(3e-6, 1e-5));
+    // every error falls with resolution (in float the plastic sigma is at its round-off floor)
+    for (int k = 0; k < 4; ++k) {
+      if (k < 3 || !test::kFloat) {
+        EXPECT_LE(std::abs(err[k]), std::abs(prev[k])) << k;
+      }
+    }
     std::copy(err, err + 4, prev);
   }
 }

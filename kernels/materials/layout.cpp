@@ -364,10 +364,15 @@ double MaterialState::bytes() const {
   if (kind_ == LayoutKind::Dense)
     // alpha, rho, e, p, p_half per material and cell, plus the three face-flux arrays
     return double(sizeof(Real)) * nmat_ * (5 * cells + 3 * double(ex_ + 1) * (ey_ + 1) * (ez_ + 1));
-  // three int cell arrays, and per slot: material id, 5 state values, 6 face fluxes
-  const double pool = double(compact_.smat.extent(0));
-  return 3 * sizeof(int) * cells + pool * (sizeof(int) + 11 * sizeof(Real)) +
-         sizeof(int) * double(compact_.mixed.extent(0));
+  // two buffer sets (the current one and the rebuild target, swapped after each rebuild),
+  // each: three int cell arrays, per slot a material id, 5 state values and 6 face fluxes, and
+  // the mixed list
+  double b = 0;
+  for (const CompactDev* c : {&compact_, &next_})
+    b += 3 * sizeof(int) * cells +
+         double(c->smat.extent(0)) * (sizeof(int) + 11 * sizeof(Real)) +
+         sizeof(int) * double(c->mixed.extent(0));
+  return b;
 }
 
 long MaterialState::first_bad(int& material, int& what) const {

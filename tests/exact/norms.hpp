@@ -19,6 +19,15 @@ inline double l1_density(const std::vector<double>& x, const std::vector<double>
   return err;
 }
 
+// L1 norm of the pressure error of a 1-D profile against a Riemann problem (as l1_density).
+inline double l1_pressure(const std::vector<double>& x, const std::vector<double>& p, double dx,
+                          const Riemann& rs, double x0, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    err += std::abs(p[i] - rs.sample((x[i] - x0) / t).p) * dx;
+  return err;
+}
+
 // L1 norm of the pressure error of a 1-D profile against the Mader solution at time t.
 inline double l1_pressure(const std::vector<double>& x, const std::vector<double>& p, double dx,
                           const Mader& m, double t) {
