@@ -42,74 +42,19 @@
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
 #include "memory.hpp"
+#include "protocol.hpp"
 #include "report.hpp"
 
 using namespace mp;
+using perf::cpu_sample;
+using perf::CpuSample;
+using perf::median;
+using perf::others_share;
+using perf::stripes_deck;
 
 namespace {
 
 constexpr int kPhases = perf::CycleTimes::kPhases;
-
-std::string stripes_deck(int nmat, int width, const std::vector<int>& cells, const char* layout) {
-  const double dx = 1.0 / cells[0];
-  const double lx = 1.0, ly = double(cells[1]) * dx, lz = double(cells[2]) * dx;
-  std::ostringstream d;
-  d.precision(17);
-  d << "scene: layouts\nmesh:\n  cells: [" << cells[0] << ", " << cells[1] << ", " << cells[2]
-    << "]\n  lo: [0, 0, 0]\n  hi: [" << lx << ", " << ly << ", " << lz << "]\n"
-    << "boundaries: {x: periodic, y: periodic, z: periodic}\n"
-    << "time: {end: 1.0e9, cfl: 0.5, dt_initial: 1.0e-3}\n"
-    << "numerics: {layout: " << layout << ", samples: 2}\nmaterials:\n";
-  for (int m = 0; m < nmat; ++m)
-    d << "  - {name: gas" << m << ", eos: ideal_gas, gamma: " << 1.3 + 0.02 * m << "}\n";
-  d << "regions:\n  - {material: gas0, shape: all, density: 1.0, pressure: 1.0, velocity: [0.3, 0, "
-       "0]}\n";
-  const int stripes = cells[0] / width;
-  for (int s = 1; s < stripes; ++s) {
-    const double lo = (s * width + 0.5) * dx, hi = ((s + 1) * width + 0.5) * dx;
-    d << "  - {material: gas" << s % nmat << ", shape: box, lo: [" << lo << ", -1, -1], hi: ["
-      << (s + 1 == stripes ? 2.0 : hi) << ", 2, 2], density: " << 1.0 + 0.1 * (s % nmat)
-      << ", pressure: 1.0, velocity: [0.3, 0, 0]}\n";
-  }
-  return d.str();
-}
-
-// CPU time of the whole machine and of this process (Linux /proc), to measure how much of the
-// CPUs other processes took while a configuration was timed.
-struct CpuSample {
-  double busy = 0, self = 0, wall = 0;  // clock ticks, clock ticks, seconds
-};
-
-CpuSample cpu_sample() {
-  CpuSample s;
-  std::ifstream st("/proc/stat");
-  std::string cpu;
-  double v[8] = {};
-  st >> cpu;
-  for (double& x : v) st >> x;
-  s.busy = v[0] + v[1] + v[2] + v[5] + v[6] + v[7];  // user nice system irq softirq steal
-  std::ifstream self("/proc/self/stat");
-  std::string tok;
-  for (int f = 1; f <= 15 && self >> tok; ++f)
-    if (f == 14 || f == 15) s.self += std::stod(tok);  // utime, stime
-  s.wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  return s;
-}
-
-// Share of all CPUs (0..1) that processes other than this one used between two samples.
-double others_share(const CpuSample& a, const CpuSample& b) {
-  const double tick = double(sysconf(_SC_CLK_TCK));
-  const double cpus = double(std::thread::hardware_concurrency());
-  const double others = (b.busy - a.busy) - (b.self - a.self);
-  return std::max(0.0, others / tick / (cpus * (b.wall - a.wall)));
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Owned cells holding two or more materials: a cell is pure when some material fills it.
 long owned_mixed_cells(const Mesh& mesh, const mat::MaterialState& mm) {

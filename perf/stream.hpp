@@ -6,6 +6,9 @@ namespace mp::perf {
 
 struct Stream {
   double triad_gbs = 0;  // best of the repetitions, 3 arrays x 8 bytes per element counted
+  // the same with each repetition timed by this process' CPU time (perf/protocol.hpp), for a
+  // one-thread run on a shared machine (perf/perf_check.cpp)
+  double triad_cpu_gbs = 0;
   double elements = 0;
 };
 

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# CTest test perf_check_fires (label perf): the timing check fires on an injected slowdown and
+# passes a plain rerun. It records its own baseline in a temporary directory (two quick runs,
+# their medians averaged), then runs the check twice against it with threshold 1.5 for every
+# benchmark (over 5 quick runs on the loaded 2-core machine the CPU-time medians spread by
+# 4-11 % between runs, the rounds of a run by up to 33 %; docs/perf-check.md):
+#   plain                                   exit 0, "perf_check: passed"
+#   MINIPAGOSA_PERF_INJECT=single_material  exit 1, the single_material row "SLOWER: REGRESSION"
+#   MINIPAGOSA_PERF_INJECT_REPEATS=50       (50 more lagrange::viscosity calls per 16^3 cycle:
+#                                           about 3.5 times the cycle's time), no other row
+#                                           slower, and its launches 48 -> 148 named.
+#   perf_check_test.sh PERF_CHECK_EXE
+set -uo pipefail
+exe="$1"
+tmp=$(mktemp -d)
+trap 'rm -rf "${tmp}"' EXIT
+export OMP_NUM_THREADS=1 OMP_PROC_BIND=false
+unset MINIPAGOSA_PERF_INJECT MINIPAGOSA_PERF_INJECT_REPEATS
+fail=0
+check() {  # what, condition...
+  local what="$1"
+  shift
+  if "$@"; then echo "ok: ${what}"; else echo "FAILED: ${what}"; fail=1; fi
+}
+
+for i in 1 2; do
+  "${exe}" --quick --json "${tmp}/run${i}.json" > "${tmp}/record${i}.txt" 2>&1
+  check "recording run ${i} exits 0" test $? -eq 0
+done
+"${exe}" --make-baseline "${tmp}/baseline.json" "${tmp}/run1.json" "${tmp}/run2.json"
+check "baseline written" test -s "${tmp}/baseline.json"
+
+"${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 1.5 > "${tmp}/plain.txt" 2>&1
+rc=$?
+echo "--- plain rerun (exit ${rc}):"
+cat "${tmp}/plain.txt"
+check "plain rerun exits 0" test "${rc}" -eq 0
+check "plain rerun passes" grep -q "^perf_check: passed" "${tmp}/plain.txt"
+check "plain rerun: no benchmark slower" bash -c "! grep -q 'SLOWER' '${tmp}/plain.txt'"
+check "plain rerun: launches unchanged" bash -c "! grep -q 'LAUNCHES CHANGED' '${tmp}/plain.txt'"
+
+MINIPAGOSA_PERF_INJECT=single_material MINIPAGOSA_PERF_INJECT_REPEATS=50 \
+  "${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 1.5 > "${tmp}/inject.txt" 2>&1
+rc=$?
+echo "--- injected slowdown (exit ${rc}):"
+cat "${tmp}/inject.txt"
+check "injected run exits 1" test "${rc}" -eq 1
+check "injected run names single_material slower" \
+  grep -qE "^\| single_material \|.*\| SLOWER: REGRESSION \|" "${tmp}/inject.txt"
+check "injected run: only single_material slower" \
+  test "$(grep -c 'SLOWER: REGRESSION' "${tmp}/inject.txt")" -eq 1
+check "injected run: its 100 extra launches named" \
+  grep -qE "^\| single_material \| 48 \| 148 \| LAUNCHES CHANGED: .*lagrange::viscosity 1 -> 51" \
+  "${tmp}/inject.txt"
+check "injected run says FAILED" grep -q "^perf_check: FAILED" "${tmp}/inject.txt"
+exit "${fail}"
