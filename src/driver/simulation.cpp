@@ -170,13 +170,16 @@ strength::FlowStress material_strength(const MaterialSpec& m) {
     f.constant = {Real(st.shear_modulus > 0 ? st.shear_modulus : double(data->G0)), Real(st.yield)};
     return f;
   }
-  f = strength::make_flow_stress(
-      *data, st.model == "johnson_cook" ? strength::kJohnsonCook : strength::kSteinbergGuinan);
+  // The deck's shear modulus replaces the library's before the set is checked: a library
+  // material with no cited modulus (steel_4340) is usable once the scene gives one.
+  strength::StrengthData set = *data;
   if (st.shear_modulus > 0) {
-    f.jc.G0 = Real(st.shear_modulus);
-    f.sg.G0 = Real(st.shear_modulus);
+    set.G0 = Real(st.shear_modulus);
+    set.jc.G0 = Real(st.shear_modulus);
+    set.sg.G0 = Real(st.shear_modulus);
   }
-  return f;
+  return strength::make_flow_stress(
+      set, st.model == "johnson_cook" ? strength::kJohnsonCook : strength::kSteinbergGuinan);
 }
 
 // The burn module's set-up of a material's burn block (burn.on false when it has none).
