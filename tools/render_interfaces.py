@@ -56,7 +56,7 @@ def draw(ax, d, axis, index, mats, shown, mode, field, colours):
         if data.shape != tuple(d.cells[::-1]):
             data = data[:-1, :-1, :-1]  # node field: the node at each cell's low corner
         im = ax.pcolormesh(xe, ye, d.cut(data, axis, index), cmap="Greys", shading="flat")
-        plt.colorbar(im, ax=ax, label=field, shrink=0.8)
+        plt.colorbar(im, ax=ax, label=field, orientation="horizontal", shrink=0.6, pad=0.25)
     if mode == "filled" and not field:
         top = np.argmax(fr, axis=0)
         cmap = ListedColormap([colours[m] if m in shown else "#ffffff" for m in mats])
