@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <string>
@@ -211,7 +212,7 @@ TEST(Deck, MissingRequiredKeys) {
   expect_holds(error_of(without(18, 21)), {"deck.yaml:1:", "key 'materials'", "missing required"});
   expect_holds(error_of(without(22, 38)), {"deck.yaml:1:", "key 'regions'", "missing required"});
   expect_holds(error_of(deck({{4, ""}})),
-               {"deck.yaml:5:", "key 'mesh.cells'", "missing required key 'cells'"});
+               {"deck.yaml:5:", "key 'mesh'", "missing required key 'cells'", "or 'zone'"});
   std::map<int, std::string> empty_regions{{22, "regions: []"}};
   for (int l = 23; l <= 38; ++l) empty_regions[l] = "";
   expect_holds(error_of(deck(empty_regions)),
@@ -220,6 +221,45 @@ TEST(Deck, MissingRequiredKeys) {
                {"deck.yaml:23:", "key 'regions.0'", "the first region must be 'shape: all'"});
   expect_holds(error_of(deck({{26, ""}})),
                {"deck.yaml:23:", "key 'regions.0'", "exactly one of 'pressure' or 'energy'"});
+}
+
+// mesh.zone: one cell size instead of cells per axis; cells = round((hi - lo) / zone), >= 1.
+TEST(Deck, ZoneSize) {
+  // extents 1, 0.8, 0.6 at zone 0.3: 3.33 -> 3, 2.67 -> 3, 2 -> 2
+  const mp::Scene s = mp::read_scene(
+      mp::Deck::parse(deck({{4, "  zone: 0.3"}, {6, "  hi: [1, 0.8, 0.6]"}}), "deck.yaml"));
+  std::printf("zone 0.3 over [1, 0.8, 0.6]: cells %d %d %d\n", s.mesh.cells[0], s.mesh.cells[1],
+              s.mesh.cells[2]);
+  EXPECT_EQ(s.mesh.cells, (std::array<int, 3>{3, 3, 2}));
+  // a zone wider than the mesh: round(1 / 3) = 0, raised to the floor of one cell
+  const mp::Scene wide = mp::read_scene(mp::Deck::parse(deck({{4, "  zone: 3"}}), "deck.yaml"));
+  EXPECT_EQ(wide.mesh.cells, (std::array<int, 3>{1, 1, 1}));
+  // 0.25 divides the unit cube exactly: 4 per axis, the base deck's cells
+  const mp::Scene exact = mp::read_scene(mp::Deck::parse(deck({{4, "  zone: 0.25"}}), "deck.yaml"));
+  EXPECT_EQ(exact.mesh.cells, (std::array<int, 3>{4, 4, 4}));
+  // a --set override of one replaces the other given in the file
+  const mp::Scene set_cells = mp::read_scene(
+      mp::Deck::parse(deck({{4, "  zone: 0.25"}}), "deck.yaml", {"mesh.cells=[2,3,5]"}));
+  EXPECT_EQ(set_cells.mesh.cells, (std::array<int, 3>{2, 3, 5}));
+  const mp::Scene set_zone =
+      mp::read_scene(mp::Deck::parse(deck(), "deck.yaml", {"mesh.zone=0.5"}));
+  EXPECT_EQ(set_zone.mesh.cells, (std::array<int, 3>{2, 2, 2}));
+
+  expect_holds(error_of(deck({{4, "  cells: [4, 4, 4]\n  zone: 0.25"}})),
+               {"deck.yaml:4:", "key 'mesh'", "exactly one of 'cells'", "or 'zone'", "not both"});
+  expect_holds(error_of(deck({{4, ""}})),
+               {"deck.yaml:5:", "key 'mesh'", "missing required key 'cells'", "or 'zone'"});
+  expect_holds(error_of(deck({{4, "  zone: 0"}})),
+               {"deck.yaml:4:", "key 'mesh.zone'", "the zone size must be positive"});
+  expect_holds(error_of(deck({{4, "  zone: -0.1"}})),
+               {"deck.yaml:4:", "key 'mesh.zone'", "the zone size must be positive"});
+  expect_holds(error_of(deck({{4, "  zone: fine"}})),
+               {"deck.yaml:4:", "key 'mesh.zone'", "expected a number, got 'fine'"});
+  // 1 / 1e-7 = 1e7 cells per axis, beyond the 2^20 a cells list may give
+  expect_holds(error_of(deck({{4, "  zone: 1.0e-7"}})),
+               {"deck.yaml:4:", "key 'mesh.zone'", "more than 2^20 cells along x"});
+  expect_holds(error_of(deck({{4, "  zone: 0.25"}}), {"mesh.zone=-1"}),
+               {"--set mesh.zone=-1", "key 'mesh.zone'", "the zone size must be positive"});
 }
 
 TEST(Deck, MaterialsAndRegions) {

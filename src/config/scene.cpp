@@ -26,8 +26,7 @@ BoundaryKind boundary_kind(const DeckNode& n, const std::string& key) {
 
 void read_mesh(const DeckNode& root, Scene& s) {
   const DeckNode m = root.child("mesh");
-  m.expect_keys({"cells", "lo", "hi", "ranks"});
-  s.mesh.cells = m.get_int3("cells", 1, 1 << 20);
+  m.expect_keys({"cells", "zone", "lo", "hi", "ranks"});
   s.mesh.lo = m.get_real3("lo", -kState, kState, {0, 0, 0});
   s.mesh.hi = m.get_real3("hi", -kState, kState);
   s.mesh.ranks = m.get_int3("ranks", 0, 1 << 20, {0, 0, 0});
@@ -35,6 +34,35 @@ void read_mesh(const DeckNode& root, Scene& s) {
     if (!(s.mesh.hi[d] > s.mesh.lo[d]))
       m.child("hi").fail(std::string("upper corner must exceed the lower corner along ") +
                          "xyz"[d]);
+
+  // The resolution is 'cells' (per axis) or 'zone' (one cell size, cm: cells = round((hi - lo) /
+  // zone), at least 1), exactly one of them in the file. A --set override of one replaces the
+  // other (--set mesh.cells=[16,16,16] coarsens a zone deck, as it does every other deck).
+  const bool has_cells = m.has("cells"), has_zone = m.has("zone");
+  bool use_zone = has_zone;
+  if (has_cells && has_zone) {
+    const auto overridden = [&](const char* key) {
+      return m.child(key).where().compare(0, 6, "--set ") == 0;
+    };
+    if (overridden("cells") == overridden("zone"))
+      m.fail("give exactly one of 'cells' (cells per axis) or 'zone' (one cell size), not both");
+    use_zone = overridden("zone");
+  } else if (!has_cells && !has_zone) {
+    m.fail("missing required key 'cells' (cells per axis) or 'zone' (one cell size)");
+  }
+  if (!use_zone) {
+    s.mesh.cells = m.get_int3("cells", 1, 1 << 20);
+  } else {
+    const double zone = m.get_real("zone", -kHuge, kHuge);
+    if (!(zone > 0)) m.child("zone").fail("the zone size must be positive");
+    for (int d = 0; d < 3; ++d) {
+      const double n = std::round((s.mesh.hi[d] - s.mesh.lo[d]) / zone);
+      if (!(n <= double(1 << 20)))
+        m.child("zone").fail(std::string("the zone size gives more than 2^20 cells along ") +
+                             "xyz"[d]);
+      s.mesh.cells[d] = std::max(1, static_cast<int>(n));
+    }
+  }
 
   for (int d = 0; d < 3; ++d) s.mesh.bc[d] = {BoundaryKind::Reflective, BoundaryKind::Reflective};
   if (!root.has("boundaries")) return;
