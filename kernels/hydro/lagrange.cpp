@@ -153,8 +153,19 @@ void Hydro::viscosity() {
   Kokkos::deep_copy(q, Real(0));
   // Owned cells and one ghost layer (the nodes of the owned region read them); the limiter
   // reads the neighbours along each axis.
+  // Compression switch (Wilkins, J. Comput. Phys. 36:281, 1980): no viscosity where the cell's
+  // volume grows (div u >= 0, from the same face-averaged jumps), even if one axis compresses:
+  // q > 0 in an expanding cell takes internal energy (q dV > 0) and puts it into the nodes,
+  // which drove cold solids and light materials of mixed cells negative (docs/numerics.md).
+  // One-dimensional flows are unchanged (the jump along the flow sets both).
+  const Geometry g = mesh_.geometry();
+  const Real rx = Real(1) / g.dx[0], ry = Real(1) / g.dx[1], rz = Real(1) / g.dx[2];
   Kokkos::parallel_for(
       "lagrange::viscosity", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+        if (jump_x(i, j, k) * rx + jump_y(i, j, k) * ry + jump_z(i, j, k) * rz >= 0) {
+          q(i, j, k) = 0;
+          return;
+        }
         const Real dx = limited_jump(jump_x(i - 1, j, k), jump_x(i, j, k), jump_x(i + 1, j, k));
         const Real dy = limited_jump(jump_y(i, j - 1, k), jump_y(i, j, k), jump_y(i, j + 1, k));
         const Real dz = limited_jump(jump_z(i, j, k - 1), jump_z(i, j, k), jump_z(i, j, k + 1));
