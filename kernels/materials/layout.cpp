@@ -384,11 +384,12 @@ long MaterialState::first_bad(int& material, int& what) const {
   // key = (cell * kMaxMaterials + m) * 4 + what: the minimum is the lowest cell, then the
   // lowest material, then the first bad quantity (what: 0 density not positive, 1 density
   // non-finite, 2 energy negative, 3 energy non-finite)
-  auto code = [] KOKKOS_FUNCTION(Real r, Real e) {
+  const Floors fl = floors_;
+  auto code = [fl] KOKKOS_FUNCTION(int m, Real r, Real e) {
     if (!misfinite(r)) return 1;
     if (!(r > 0)) return 0;
     if (!misfinite(e)) return 3;
-    if (!(e >= 0)) return 2;
+    if (!(e >= fl.e[m])) return 2;
     return -1;
   };
   constexpr long kM = kMaxMaterials;
@@ -401,7 +402,7 @@ long MaterialState::first_bad(int& material, int& what) const {
         KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
           for (int m = 0; m < nmat; ++m) {
             if (!(d.alpha(m, i, j, k) > 0)) continue;
-            const int c = code(d.rho(m, i, j, k), d.e(m, i, j, k));
+            const int c = code(m, d.rho(m, i, j, k), d.e(m, i, j, k));
             if (c < 0) continue;
             const long key = (g.global_cell(i, j, k, nx, ny) * kM + m) * 4 + c;
             if (key < acc) acc = key;
@@ -419,7 +420,7 @@ long MaterialState::first_bad(int& material, int& what) const {
           if (i < ng || i >= hx || j < ng || j >= hy || k < ng || k >= hz) return;
           const int f = d.first(i, j, k);
           for (int q = f; q < f + d.nm(i, j, k); ++q) {
-            const int c = code(d.srho(q), d.se(q));
+            const int c = code(d.smat(q), d.srho(q), d.se(q));
             if (c < 0) continue;
             const long key = (g.global_cell(i, j, k, nx, ny) * kM + d.smat(q)) * 4 + c;
             if (key < acc) acc = key;
@@ -433,6 +434,11 @@ long MaterialState::first_bad(int& material, int& what) const {
   what = int(global % 4);
   material = int((global / 4) % kM);
   return global / (4 * kM);
+}
+
+void MaterialState::set_energy_floors(const std::vector<Real>& floors) {
+  for (std::size_t m = 0; m < floors.size() && m < std::size_t(kMaxMaterials); ++m)
+    floors_.e[m] = floors[m];
 }
 
 long MaterialState::first_bad(double vals[3]) const {

@@ -245,6 +245,10 @@ class MaterialState {
   // `material` to the lowest such material of that cell and `what` to its first bad quantity:
   // 0 density not positive, 1 density non-finite, 2 energy negative, 3 energy non-finite.
   long first_bad(int& material, int& what) const;
+  // The lowest specific energy each material may hold in a mixed cell before first_bad calls it
+  // negative (default 0). A Mie-Grueneisen solid measures e from its ambient reference state:
+  // below it is colder than ambient, not unphysical (docs/numerics.md, "Health check").
+  void set_energy_floors(const std::vector<Real>& floors);
   // The same, with (material, what, 0) in `vals` (the form tests/test_multimat.cpp calls).
   long first_bad(double vals[3]) const;
 
@@ -259,6 +263,9 @@ class MaterialState {
   CompactDev compact_, next_;  // current and rebuild target (swapped after each rebuild)
   Buffer send_[2], recv_[2];   // material halo messages, per side
   int ex_, ey_, ez_;
+  struct Floors {
+    Real e[kMaxMaterials] = {};
+  } floors_;
 };
 
 // ------------------------------------------------------------------------------------------

@@ -309,10 +309,38 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
         const ReturnResult rr = radial_return(t, Y, G);
         s.set(i, j, k, t);
         ep(i, j, k) += rr.d_eps_p;
-        const Real de = dt * power / solid;
+        // Where the work is negative (elastic unloading) in a cell that also holds materials
+        // without strength, the solids give at most half of their coldest member's specific
+        // energy and the rest comes from the others by mass: the deviator a mixed cell holds came
+        // by remap without the elastic energy that built it, so its unloading under a gas's
+        // strain can take more than the solids have (cold copper, e ~ 5e-8, went negative in
+        // the perforator). Total energy stays exact unless the others cannot pay either.
+        Real de = dt * power / solid, de_other = 0;
+        if (de < 0) {
+          Real emin = Real(1e30), other = 0, emin_other = Real(1e30);
+          for (int n = 0; n < cell.count(); ++n) {
+            const mat::MatRef m = cell.get(n);
+            if (!(m.alpha > 0)) continue;
+            if (models.f[m.m].kind != kNoStrength) {
+              emin = mmin(emin, *m.e);
+            } else {
+              other += m.alpha * *m.rho;
+              emin_other = mmin(emin_other, *m.e);
+            }
+          }
+          const Real floor = -Real(0.5) * mmax(emin, Real(0));
+          if (other > 0 && de < floor) {
+            const Real rest = (de - floor) * solid / other;  // per unit mass of the others
+            if (rest >= -Real(0.5) * mmax(emin_other, Real(0))) {
+              de = floor;
+              de_other = rest;
+            }
+          }
+        }
         for (int n = 0; n < cell.count(); ++n) {
           const mat::MatRef m = cell.get(n);
-          if (m.alpha > 0 && models.f[m.m].kind != kNoStrength) *m.e += de;
+          if (!(m.alpha > 0)) continue;
+          *m.e += models.f[m.m].kind != kNoStrength ? de : de_other;
         }
       });
 }
