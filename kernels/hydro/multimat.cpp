@@ -296,7 +296,7 @@ void Hydro::mm_equation_of_state() const {
 
 void Hydro::mm_predictor(Real vol) {
   const auto mats = mats_;
-  auto q = s_.q, ph = s_.p_half;
+  auto q = s_.q, ph = s_.p_half, rho = s_.rho;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   mm_->for_cells(
       "lagrange::predictor", all_lo(), all_hi(mesh_),
@@ -309,7 +309,8 @@ void Hydro::mm_predictor(Real vol) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          const Real e_half = pdv_energy(*m.e, *m.p, q(i, j, k), dv, mass);
+          const Real e_half = pdv_energy(
+              *m.e, *m.p, material_viscosity(q(i, j, k), *m.rho, rho(i, j, k)), dv, mass);
           const Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
           *m.ph = pm;
           sum += m.alpha * pm;
@@ -341,7 +342,8 @@ void Hydro::mm_corrector(Real vol) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
-          *m.e = pdv_energy(*m.e, *m.ph, q(i, j, k), dv, mass);
+          *m.e = pdv_energy(*m.e, *m.ph, material_viscosity(q(i, j, k), *m.rho, rho(i, j, k)), dv,
+                            mass);
           *m.rho = mass / vnew;
           slot[n] = s;
           id[n] = m.m;

@@ -11,6 +11,17 @@ KOKKOS_INLINE_FUNCTION Real viscosity(Real rho, Real c, Real du, Real c_quad, Re
   return rho * (c_quad * du * du - c_lin * c * du);
 }
 
+// A material's share of the cell's viscosity in a mixed cell: q is proportional to density, so
+// each material sees q rho_m / rho (rho the cell's mean density). Under equal strain every
+// material then receives the same viscous work per unit mass, -q dv / (rho V), and the sum over
+// the materials, alpha_m rho_m V de_m, is the cell's -q dv exactly; the cell's q itself, built
+// from the mean density, would charge a light material (air beside copper) rho / rho_m ~ 1e3
+// times its share and drive its energy negative wherever q > 0 meets a net expansion. A pure
+// cell gets q (rho_m == rho).
+KOKKOS_INLINE_FUNCTION Real material_viscosity(Real q, Real rho_m, Real rho) {
+  return q * (rho_m / rho);
+}
+
 // Christensen's monotonic limiter for the viscosity (Christensen, "Godunov methods on a
 // staggered mesh: an improved artificial viscosity", UCRL-JC-105269, 1990): with the velocity
 // jumps of the two neighbours along the same axis, returns the jump that the viscosity should
