@@ -30,9 +30,9 @@ struct TaylorRun {
   long cells = 0;
 };
 
-// The deck with cubic cells of R/n: 2.25 R across (n multiple of 4), 7 R high.
+// The deck with cubic cells of R/n: at least 2.25 R across (whole cells), 7 R high.
 TaylorRun run_taylor(const std::string& model, int n) {
-  const int nxy = static_cast<int>(std::lround(2.25 * n)), nz = 7 * n;
+  const int nxy = static_cast<int>(std::ceil(2.25 * n)), nz = 7 * n;
   const double h = kRadius / n;
   const std::string cells = "mesh.cells=[" + std::to_string(nxy) + "," + std::to_string(nxy) + "," +
                             std::to_string(nz) + "]";
