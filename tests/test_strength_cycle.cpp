@@ -261,9 +261,10 @@ TEST(StrengthCycle, DeckErrorsNameTheKey) {
       {{"materials.0.strength.library=unobtainium"}, "no strength data for 'unobtainium'"},
       {{"materials.0.strength.shear_modulus=-1"}, "materials.0.strength.shear_modulus"},
       {{"materials.0.strength.colour=red"}, "colour"},
+      // a multi-material scene reads each material's block (and names the second's key)
       {{"materials=[{name: al, library: aluminium_6061, strength: {model: steinberg_guinan}}, "
-        "{name: air, library: air}]"},
-       "not supported yet"},
+        "{name: air, library: air, strength: {model: johnson_cook}}]"},
+       "key 'materials.1.strength': model johnson_cook takes its parameters"},
   };
   for (const auto& c : cases) {
     const std::string msg = test::input_error("elastic_wave.yaml", c.set);

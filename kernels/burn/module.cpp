@@ -2,6 +2,7 @@
 #include "burn/module.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.hpp"
 #include "hydro/per_mass.hpp"
@@ -17,32 +18,104 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   t_light_ = mesh.new_field("lighting_time", Centering::Cell);
   scratch_ = mesh.new_field("burn_remap_scratch", Centering::Cell);
   Kokkos::deep_copy(t_light_, Real(kNeverLit));
-  if (!setup.programmed) return;
-  // Lighting times on the whole global mesh (every cell is explosive in a single-material
-  // scene, so the Huygens construction is the straight-line distance), each rank keeping its
-  // block. Host-side, once.
+  detonators_ = setup.detonators;
+  programmed_ = setup.programmed;
+  if (!setup.programmed || setup.material >= 0) return;
+  // every cell is explosive in a single-material scene, so the Huygens construction is the
+  // straight-line distance
+  long n = 1;
+  for (int d = 0; d < 3; ++d) n *= mesh.global_cells(d);
+  set_lighting(std::vector<std::uint8_t>(n, 1), setup.detonators);
+}
+
+Burn::Burn(const Mesh& mesh, const BurnSetup& setup, const mat::MaterialState* materials)
+    : Burn(mesh, setup) {
+  mm_ = materials;
+  material_ = setup.material;
+}
+
+// Lighting times on the whole global mesh, each rank keeping its block. Host-side, once.
+void Burn::set_lighting(const std::vector<std::uint8_t>& explosive,
+                        const std::vector<Detonator>& detonators) {
+  const Geometry g = mesh_.geometry();
   LightingGrid grid;
   for (int d = 0; d < 3; ++d) {
-    grid.n[d] = mesh.global_cells(d);
+    grid.n[d] = mesh_.global_cells(d);
     grid.origin[d] = double(g.lo[d]);
     grid.h[d] = double(g.dx[d]);
   }
-  const std::vector<std::uint8_t> explosive(grid.cells(), 1);
   std::vector<double> times;
   try {
-    times = lighting_times(grid, explosive, setup.detonators, double(setup.d_cj));
+    times = lighting_times(grid, explosive, detonators, double(params_.d_cj));
   } catch (const std::invalid_argument& e) {
     throw InputError(std::string("burn: ") + e.what());
   }
   auto h = Kokkos::create_mirror_view(t_light_);
   Kokkos::deep_copy(h, t_light_);
   const int ng = Mesh::ng;
-  for (int k = ng; k < ng + mesh.owned_cells(2); ++k)
-    for (int j = ng; j < ng + mesh.owned_cells(1); ++j)
-      for (int i = ng; i < ng + mesh.owned_cells(0); ++i)
-        h(i, j, k) = Real(times[grid.index(mesh.offset(0) + i - ng, mesh.offset(1) + j - ng,
-                                           mesh.offset(2) + k - ng)]);
+  for (int k = ng; k < ng + mesh_.owned_cells(2); ++k)
+    for (int j = ng; j < ng + mesh_.owned_cells(1); ++j)
+      for (int i = ng; i < ng + mesh_.owned_cells(0); ++i)
+        h(i, j, k) = Real(times[grid.index(mesh_.offset(0) + i - ng, mesh_.offset(1) + j - ng,
+                                           mesh_.offset(2) + k - ng)]);
+  if (mm_) {
+    // cells with some explosive but less than half: the earliest lit neighbour's time plus the
+    // distance between the centres over D
+    auto frac = Kokkos::create_mirror_view(mm_->fraction(material_));
+    Kokkos::deep_copy(frac, mm_->fraction(material_));
+    const double d_cj = double(params_.d_cj);
+    for (int k = ng; k < ng + mesh_.owned_cells(2); ++k)
+      for (int j = ng; j < ng + mesh_.owned_cells(1); ++j)
+        for (int i = ng; i < ng + mesh_.owned_cells(0); ++i) {
+          if (!(frac(i, j, k) > 0) ||
+              explosive[grid.index(mesh_.offset(0) + i - ng, mesh_.offset(1) + j - ng,
+                                   mesh_.offset(2) + k - ng)])
+            continue;
+          double best = double(kNeverLit);
+          for (int c = -1; c <= 1; ++c)
+            for (int b = -1; b <= 1; ++b)
+              for (int a = -1; a <= 1; ++a) {
+                const int gi = mesh_.offset(0) + i - ng + a, gj = mesh_.offset(1) + j - ng + b,
+                          gk = mesh_.offset(2) + k - ng + c;
+                if (gi < 0 || gj < 0 || gk < 0 || gi >= grid.n[0] || gj >= grid.n[1] ||
+                    gk >= grid.n[2])
+                  continue;
+                const long q = grid.index(gi, gj, gk);
+                if (!explosive[q] || !(times[q] < double(kNeverLit))) continue;
+                const double dist =
+                    std::sqrt(a * a * grid.h[0] * grid.h[0] + b * b * grid.h[1] * grid.h[1] +
+                              c * c * grid.h[2] * grid.h[2]);
+                best = std::min(best, times[q] + dist / d_cj);
+              }
+          h(i, j, k) = Real(best);
+        }
+  }
   Kokkos::deep_copy(t_light_, h);
+}
+
+void Burn::light() {
+  if (!mm_ || !programmed_) return;
+  // the cells at least half explosive, gathered over the ranks
+  const Field3 frac = mm_->fraction(material_);
+  auto hf = Kokkos::create_mirror_view(frac);
+  Kokkos::deep_copy(hf, frac);
+  long n = 1;
+  int gn[3];
+  for (int d = 0; d < 3; ++d) {
+    gn[d] = mesh_.global_cells(d);
+    n *= gn[d];
+  }
+  std::vector<std::uint8_t> local(n, 0), global(n, 0);
+  const int ng = Mesh::ng;
+  for (int k = ng; k < ng + mesh_.owned_cells(2); ++k)
+    for (int j = ng; j < ng + mesh_.owned_cells(1); ++j)
+      for (int i = ng; i < ng + mesh_.owned_cells(0); ++i) {
+        const long gi = mesh_.offset(0) + i - ng, gj = mesh_.offset(1) + j - ng,
+                   gk = mesh_.offset(2) + k - ng;
+        local[gi + gn[0] * (gj + long(gn[1]) * gk)] = hf(i, j, k) >= Real(0.5) ? 1 : 0;
+      }
+  MPI_Allreduce(local.data(), global.data(), int(n), MPI_UNSIGNED_CHAR, MPI_MAX, mesh_.comm());
+  set_lighting(global, detonators_);
 }
 
 void Burn::scale_pressure(const Field3& p) const {
@@ -66,6 +139,21 @@ void Burn::update(const Field3& rho, double dt) {
   const BurnParams b = params_;
   const Real t = Real(time_);
   auto f = f_, tl = t_light_;
+  if (mm_) {
+    // the explosive burns at its own density
+    const int x = material_;
+    const int ng = Mesh::ng;
+    mm_->for_cells(
+        "burn::fraction", {ng, ng, ng}, mesh_.owned_end(),
+        KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+          for (int s = 0; s < cell.count(); ++s) {
+            const mat::MatRef m = cell.get(s);
+            if (m.m == x && m.alpha > 0)
+              f(i, j, k) = update_burn_fraction(b, f(i, j, k), t, tl(i, j, k), *m.rho);
+          }
+        });
+    return;
+  }
   Kokkos::parallel_for(
       "burn::fraction", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
         f(i, j, k) = update_burn_fraction(b, f(i, j, k), t, tl(i, j, k), rho(i, j, k));

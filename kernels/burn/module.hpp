@@ -10,6 +10,15 @@
 // energy is kept by the hydro as usual. The sound speed stays the products' own at (rho, e) and
 // is raised to D where F < 1, so the time step keeps the programmed front within a cell per
 // step (docs/numerics.md, "Burn").
+//
+// Multi-material scenes (one explosive material, `BurnSetup::material`): F stays a cell field,
+// the burn fraction of the cell's explosive, carried per unit mass of the explosive with the
+// explosive's own material mass flux (kernels/hydro/hydro.hpp, "carriers"); only the explosive's
+// pressure is scaled (the hydro's multi-material EOS and predictor read fraction()), it burns at
+// its own density, and a cell holding unburnt explosive gets c >= D. Lighting times run through
+// the cells at least half explosive (inert cells shadow); a cell with less explosive takes the
+// earliest time of a lit neighbour plus the distance between their centres over D, so no
+// explosive is left unlit behind a thin layer of mixed cells.
 #pragma once
 #include <string>
 #include <vector>
@@ -17,6 +26,7 @@
 #include "burn/burn.hpp"
 #include "burn/lighting.hpp"
 #include "io/hdf5_writer.hpp"
+#include "materials/layout.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 
@@ -28,11 +38,17 @@ struct BurnSetup {
   Real ramp_cells = kDefaultRampCells;
   bool programmed = true, volume_burn = false;
   std::vector<Detonator> detonators;
+  int material = -1;  // the explosive's material id in a multi-material scene
 };
 
 class Burn {
  public:
   Burn(const Mesh& mesh, const BurnSetup& setup);
+  // A multi-material scene: call light() once the materials are in place.
+  Burn(const Mesh& mesh, const BurnSetup& setup, const mat::MaterialState* materials);
+  // Lighting times from the explosive's volume fraction (multi-material scenes; collective).
+  void light();
+  int material() const { return material_; }
 
   // p = F p on every cell (after the EOS, and at the half step), and c = max(c, D) where F < 1.
   void scale_pressure(const Field3& p) const;
@@ -53,7 +69,14 @@ class Burn {
   const BurnParams& params() const { return params_; }
 
  private:
+  void set_lighting(const std::vector<std::uint8_t>& explosive,
+                    const std::vector<Detonator>& detonators);
+
   const Mesh& mesh_;
+  const mat::MaterialState* mm_ = nullptr;
+  int material_ = -1;
+  std::vector<Detonator> detonators_;
+  bool programmed_ = true;
   BurnParams params_;
   Field3 f_, t_light_, scratch_;
   double time_ = 0;

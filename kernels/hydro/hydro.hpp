@@ -86,7 +86,11 @@ struct Options {
   // flow-stress model and the reference density; kind kNoStrength leaves the module out.
   strength::FlowStress strength;
   Real strength_rho0 = 1;
-  // Burn of a single-material scene's explosive (kernels/burn/module.hpp); off unless burn.on.
+  // Strength of a multi-material scene: one model per material (n == 0, or every kind
+  // kNoStrength, leaves the module out).
+  strength::MaterialModels material_strength;
+  // Burn of the explosive (kernels/burn/module.hpp); off unless burn.on. A multi-material scene
+  // names the explosive's material id in burn.material.
   burn::BurnSetup burn;
 };
 
@@ -190,6 +194,15 @@ class Hydro {
   void mm_remap_faces(int d);
   void mm_remap_cells(int d);
   void mm_ke_fix();
+  // The carriers' densities of a remap step (before the cell update).
+  void mm_carriers();
+  // The mass fluxes (face field of the sweep's axis) and densities the module quantities ride
+  // on: a single-material scene's cell ones, or a multi-material scene's carriers.
+  struct Carrier {
+    std::array<Field3, 3> flux;
+    Field3 rho;
+  };
+  Carrier carrier(int slot) const;
 
   const Mesh& mesh_;
   Halo& halo_;
@@ -199,6 +212,12 @@ class Hydro {
   std::unique_ptr<mat::MaterialState> mm_;
   std::unique_ptr<strength::Strength> strength_;
   std::unique_ptr<burn::Burn> burn_;
+  // Multi-material scenes with modules: the materials whose mass carries each module's cell
+  // quantities (slot 0 strength: the materials with strength; slot 1 burn: the explosive),
+  // their mass flux through the faces of the sweep (written by the material flux kernel) and
+  // their density (sum alpha_m rho_m over them).
+  unsigned carrier_mask_[2] = {0, 0};
+  Field3 carrier_flux_[2], carrier_rho_[2];
   State s_;
 };
 

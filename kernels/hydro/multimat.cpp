@@ -185,6 +185,9 @@ struct FaceFluxes {
   Field3 rho, e, pre, vf, mf, ef;
   int d, nmat, order, iface;
   Real dx, dy, dz;
+  // module carriers (hydro.hpp): the summed mass flux of the materials of each mask
+  unsigned cmask[2];
+  Field3 cflux[2];
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
     const int sx = d == 0, sy = d == 1, sz = d == 2;
@@ -259,24 +262,55 @@ struct FaceFluxes {
       ef(i, j, k) = etot;
     }
     store_face(dev, i, j, k, di, dj, dk, side, V, M, E);
+    for (int c = 0; c < 2; ++c) {
+      if (!cmask[c]) continue;
+      Real sum = 0;
+      for (int m = 0; m < nmat; ++m)
+        if ((cmask[c] >> m) & 1u) sum += M[m];
+      cflux[c](i, j, k) = sum;
+    }
   }
 };
+
+}  // namespace
+
+namespace {
+
+// The burn fraction of a multi-material scene's explosive (burn.hpp: p = F P_products), or no
+// explosive (material -1).
+struct BurnHook {
+  int material = -1;
+  Field3 f;
+  Real d_cj = 0;
+};
+
+BurnHook burn_hook(const burn::Burn* b) {
+  if (!b) return {};
+  return {b->material(), b->fraction(), b->params().d_cj};
+}
 
 }  // namespace
 
 void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
   auto p = s_.p, c = s_.c, rho = s_.rho;
+  const BurnHook bh = burn_hook(burn_.get());
   mm_->for_cells(
       "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
         Real psum = 0, k2 = 0, plast = 0, clast = 0;
         int n = 0;
+        bool unburnt = false;
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
-          const Real pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
+          Real pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
           const Real cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
+          if (m.m == bh.material) {
+            const Real f = bh.f(i, j, k);
+            pm *= f;
+            unburnt = f < 1;
+          }
           *m.p = pm;
           psum += m.alpha * pm;
           k2 += m.alpha * *m.rho * cm * cm;
@@ -291,6 +325,8 @@ void Hydro::mm_equation_of_state() const {
           p(i, j, k) = psum;
           c(i, j, k) = msqrt(k2 / rho(i, j, k));
         }
+        // the programmed front crosses at most a cell per step
+        if (unburnt) c(i, j, k) = mmax(c(i, j, k), bh.d_cj);
       });
 }
 
@@ -298,6 +334,7 @@ void Hydro::mm_predictor(Real vol) {
   const auto mats = mats_;
   auto q = s_.q, ph = s_.p_half, rho = s_.rho;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  const BurnHook bh = burn_hook(burn_.get());
   mm_->for_cells(
       "lagrange::predictor", all_lo(), all_hi(mesh_),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
@@ -311,7 +348,8 @@ void Hydro::mm_predictor(Real vol) {
           const Real mass = *m.rho * vol;
           const Real e_half = pdv_energy(
               *m.e, *m.p, material_viscosity(q(i, j, k), *m.rho, rho(i, j, k)), dv, mass);
-          const Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
+          Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
+          if (m.m == bh.material) pm *= bh.f(i, j, k);
           *m.ph = pm;
           sum += m.alpha * pm;
           last = pm;
@@ -394,9 +432,22 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
   }
   lo[d] = fr[0];
   hi[d] = fr[1];
-  FaceFluxes<Dev> ff{
-      dev, s_.rho,  s_.e,       s_.pre_vol,     s_.vol_flux[d], s_.mass_flux[d], s_.energy_flux[d],
-      d,   mats_.n, opt_.order, opt_.interface, g.dx[0],        g.dx[1],         g.dx[2]};
+  FaceFluxes<Dev> ff{dev,
+                     s_.rho,
+                     s_.e,
+                     s_.pre_vol,
+                     s_.vol_flux[d],
+                     s_.mass_flux[d],
+                     s_.energy_flux[d],
+                     d,
+                     mats_.n,
+                     opt_.order,
+                     opt_.interface,
+                     g.dx[0],
+                     g.dx[1],
+                     g.dx[2],
+                     {carrier_mask_[0], carrier_mask_[1]},
+                     {carrier_flux_[0], carrier_flux_[1]}};
   Kokkos::parallel_for("remap::material_flux",
                        Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}), ff);
 }
@@ -433,6 +484,17 @@ void Hydro::mm_remap_cells(int d) {
     mm_cell_update(mm_->dense(), d);
   else
     mm_cell_update(mm_->compact(), d);
+}
+
+void Hydro::mm_carriers() {
+  for (int c = 0; c < 2; ++c)
+    if (carrier_mask_[c]) mm_->carrier_density(carrier_mask_[c], carrier_rho_[c]);
+}
+
+Hydro::Carrier Hydro::carrier(int slot) const {
+  if (!mm_) return {s_.mass_flux, s_.rho};
+  const Field3 f = carrier_flux_[slot];
+  return {{f, f, f}, carrier_rho_[slot]};
 }
 
 void Hydro::mm_ke_fix() {

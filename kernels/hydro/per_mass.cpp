@@ -19,6 +19,7 @@ void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
           // flux of phi through face (fi, fj, fk) normal to d with mass flux m, from its donor
           auto flux = [&](const Field3& mf, int fi, int fj, int fk, int d) {
             const Real m = mf(fi, fj, fk);
+            if (m == 0) return Real(0);  // (a carrier absent from the donor)
             const int sx = d == 0, sy = d == 1, sz = d == 2;
             const int dn = m > 0 ? -1 : 0, st = m > 0 ? 1 : -1;
             const int di = fi + dn * sx, dj = fj + dn * sy, dk = fk + dn * sz;
@@ -41,7 +42,9 @@ void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
             dm += mfz(i, j, k) - mfz(i, j, k + 1);
             dq += flux(mfz, i, j, k, 2) - flux(mfz, i, j, k + 1, 2);
           }
-          phi(i, j, k) = (old(i, j, k) * m0 + dq) / (m0 + dm);
+          // a cell its carrier left holds 0 (multi-material carriers; hydro.hpp)
+          const Real m1 = m0 + dm;
+          phi(i, j, k) = m1 > 0 ? (old(i, j, k) * m0 + dq) / m1 : Real(0);
         });
   }
 }

@@ -159,8 +159,16 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // (Multi-material: owned cells, then the material exchange; the scene reader keeps
   // multi-material runs on split sweeps, one axis per step.)
   // the strength module's quantities ride on the same mass fluxes (before rho changes)
-  if (strength_) strength_->remap(axes, s_.mass_flux, rho, pre, ord);
-  if (burn_) burn_->remap(axes, s_.mass_flux, rho, pre, ord);
+  // (a multi-material scene's on its carriers' mass fluxes and densities)
+  if (mm_ && (strength_ || burn_)) mm_carriers();
+  if (strength_) {
+    const Carrier c = carrier(0);
+    strength_->remap(axes, c.flux, c.rho, pre, ord);
+  }
+  if (burn_) {
+    const Carrier c = carrier(1);
+    burn_->remap(axes, c.flux, c.rho, pre, ord);
+  }
   if (mm_) {
     for (int d = 0; d < 3; ++d)
       if (axes[d]) mm_remap_cells(d);

@@ -268,6 +268,19 @@ std::vector<double> MaterialState::material_masses() const {
   return out;
 }
 
+void MaterialState::carrier_density(unsigned mask, const Field3& out) const {
+  for_cells(
+      "matter::carrier_density", {0, 0, 0}, {ex_, ey_, ez_},
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        Real r = 0;
+        for (int s = 0; s < cell.count(); ++s) {
+          const MatRef m = cell.get(s);
+          if (m.alpha > 0 && (mask >> m.m) & 1u) r += m.alpha * *m.rho;
+        }
+        out(i, j, k) = r;
+      });
+}
+
 Field3 MaterialState::fraction(int m) const {
   Field3 f(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fraction"), ex_, ey_, ez_);
   if (kind_ == LayoutKind::Dense) {

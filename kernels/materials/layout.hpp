@@ -225,6 +225,9 @@ class MaterialState {
   // (axis by axis, like the field halo; messages carry nmat x (alpha, rho, e) per cell).
   void exchange();
 
+  // sum alpha_m rho_m over the materials m whose bit is set in `mask`, on every cell (ghosts
+  // included): the density of a module's carrier materials (kernels/hydro/hydro.hpp).
+  void carrier_density(unsigned mask, const Field3& out) const;
   // Mass of each material over the owned cells (global sums).
   std::vector<double> material_masses() const;
   // Volume fraction of material m on the block (ghosts included), for output.

@@ -69,6 +69,17 @@ KOKKOS_INLINE_FUNCTION PointState point_state(const FlowStress& f, Real rho0, Re
 
 Strength::Strength(const Mesh& mesh, const FlowStress& model, Real rho0)
     : mesh_(mesh), model_(model), rho0_(rho0) {
+  allocate();
+}
+
+Strength::Strength(const Mesh& mesh, const MaterialModels& models,
+                   const mat::MaterialState* materials)
+    : mesh_(mesh), rho0_(1), models_(models), mm_(materials) {
+  allocate();
+}
+
+void Strength::allocate() {
+  const Mesh& mesh = mesh_;
   const char* names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
   for (int c = 0; c < 6; ++c) {
     s_[c] = mesh.new_field(std::string("stress_") + names[c], Centering::Cell);
@@ -82,6 +93,7 @@ Strength::Strength(const Mesh& mesh, const FlowStress& model, Real rho0)
 
 void Strength::stiffen_sound_speed(const Field3& rho, const Field3& e, const Field3& p,
                                    const Field3& c) const {
+  if (mm_) return mm_stiffen_sound_speed(rho, c);
   const FlowStress f = model_;
   const Real rho0 = rho0_;
   auto ep = eps_p_;
@@ -98,22 +110,27 @@ void Strength::stiffen_sound_speed(const Field3& rho, const Field3& e, const Fie
 void Strength::predictor(const Field3& u, const Field3& v, const Field3& w, const Field3& rho,
                          const Field3& e, const Field3& p_half, Real dt) {
   const Geometry g = mesh_.geometry();
-  const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
-  const FlowStress f = model_;
-  const Real rho0 = rho0_;
-  const SymField s(s_), sh(s_half_);
-  auto ep = eps_p_;
-  const Real h = Real(0.5) * dt;
-  Kokkos::parallel_for(
-      "strength::predictor", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
-        const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
-        const PointState x = point_state(f, rho0, rho(i, j, k), e(i, j, k), p_half(i, j, k),
-                                         ep(i, j, k), equivalent_strain_rate(L));
-        const Real G = f.shear_modulus(x);
-        Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
-        radial_return(t, f.yield_stress(x), G);
-        sh.set(i, j, k, t);
-      });
+  const SymField sh(s_half_);
+  if (mm_) {
+    mm_predictor(u, v, w, dt);
+  } else {
+    const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
+    const FlowStress f = model_;
+    const Real rho0 = rho0_;
+    const SymField s(s_);
+    auto ep = eps_p_;
+    const Real h = Real(0.5) * dt;
+    Kokkos::parallel_for(
+        "strength::predictor", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
+          const PointState x = point_state(f, rho0, rho(i, j, k), e(i, j, k), p_half(i, j, k),
+                                           ep(i, j, k), equivalent_strain_rate(L));
+          const Real G = f.shear_modulus(x);
+          Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
+          radial_return(t, f.yield_stress(x), G);
+          sh.set(i, j, k, t);
+        });
+  }
   // F_i = -sum_j s_ij sgn_j A_j over the node's 8 cells; sgn_j = +1 where the node lies on the
   // cell's high side along j (the cell below the node along j).
   const Real ax = g.dx[1] * g.dx[2] * Real(0.25), ay = g.dx[0] * g.dx[2] * Real(0.25),
@@ -140,6 +157,7 @@ void Strength::predictor(const Field3& u, const Field3& v, const Field3& w, cons
 
 void Strength::corrector(const Field3& ub, const Field3& vb, const Field3& wb, const Field3& rho,
                          const Field3& e, const Field3& p_half, Real dt) {
+  if (mm_) return mm_corrector(ub, vb, wb, dt);
   const Geometry g = mesh_.geometry();
   const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
   const FlowStress f = model_;
@@ -184,6 +202,106 @@ std::vector<OutputField> Strength::output_fields() const {
   return {{"stress_xx", C, s_[0]},      {"stress_yy", C, s_[1]}, {"stress_zz", C, s_[2]},
           {"stress_xy", C, s_[3]},      {"stress_yz", C, s_[4]}, {"stress_zx", C, s_[5]},
           {"plastic_strain", C, eps_p_}};
+}
+
+// ------------------------------------------------------------------------------------------
+// Multi-material scenes (module.hpp, "Multi-material scenes").
+
+namespace {
+
+// The shear modulus and flow stress of a cell: the volume-fraction weighted sums over its
+// materials with strength, each at its own state; `solid` receives sum alpha_m rho_m over them.
+template <class Cell>
+KOKKOS_INLINE_FUNCTION void mixture_moduli(const MaterialModels& mm, const Cell& cell, Real eps_p,
+                                           Real eps_dot, bool half, Real& G, Real& Y, Real& solid) {
+  G = Y = solid = 0;
+  for (int s = 0; s < cell.count(); ++s) {
+    const mat::MatRef m = cell.get(s);
+    const FlowStress& f = mm.f[m.m];
+    if (!(m.alpha > 0) || f.kind == kNoStrength) continue;
+    const PointState x =
+        point_state(f, mm.rho0[m.m], *m.rho, *m.e, half ? *m.ph : *m.p, eps_p, eps_dot);
+    G += m.alpha * f.shear_modulus(x);
+    Y += m.alpha * f.yield_stress(x);
+    solid += m.alpha * *m.rho;
+  }
+}
+
+}  // namespace
+
+void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const {
+  const MaterialModels models = models_;
+  auto ep = eps_p_;
+  mm_->for_cells(
+      "strength::sound_speed", {0, 0, 0},
+      {mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+       mesh_.extent(Centering::Cell, 2)},
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        Real G, Y, solid;
+        mixture_moduli(models, cell, ep(i, j, k), Real(0), false, G, Y, solid);
+        if (!(solid > 0)) return;
+        const Real c0 = c(i, j, k);
+        c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * G / rho(i, j, k));
+      });
+}
+
+void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt) {
+  const Geometry g = mesh_.geometry();
+  const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
+  const MaterialModels models = models_;
+  const SymField s(s_), sh(s_half_);
+  auto ep = eps_p_;
+  const Real h = Real(0.5) * dt;
+  const int ng = Mesh::ng;
+  const auto end = mesh_.owned_end();
+  mm_->for_cells(
+      "strength::predictor", {ng - 1, ng - 1, ng - 1}, {end[0] + 1, end[1] + 1, end[2] + 1},
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
+        Real G, Y, solid;
+        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, solid);
+        Sym t{};
+        if (solid > 0) {
+          t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
+          radial_return(t, Y, G);
+        }
+        sh.set(i, j, k, t);
+      });
+}
+
+void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb, Real dt) {
+  const Geometry g = mesh_.geometry();
+  const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
+  const MaterialModels models = models_;
+  const SymField s(s_), sh(s_half_);
+  auto ep = eps_p_;
+  const int ng = Mesh::ng;
+  mm_->for_cells(
+      "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
+        Real G, Y, solid;
+        mixture_moduli(models, cell, ep(i, j, k), equivalent_strain_rate(L), true, G, Y, solid);
+        if (!(solid > 0)) {
+          s.set(i, j, k, Sym{});
+          return;
+        }
+        const Sym q = sh.get(i, j, k);
+        const Real power = q.xx * L(0, 0) + q.yy * L(1, 1) + q.zz * L(2, 2) +
+                           q.xy * (L(0, 1) + L(1, 0)) + q.yz * (L(1, 2) + L(2, 1)) +
+                           q.zx * (L(2, 0) + L(0, 2));
+        Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, dt);
+        const ReturnResult rr = radial_return(t, Y, G);
+        s.set(i, j, k, t);
+        ep(i, j, k) += rr.d_eps_p;
+        // the work goes to the materials with strength, the same specific energy to each (the
+        // hydro's corrector then rebuilds a mixed cell's average from its materials)
+        const Real de = dt * power / solid;
+        for (int n = 0; n < cell.count(); ++n) {
+          const mat::MatRef m = cell.get(n);
+          if (m.alpha > 0 && models.f[m.m].kind != kNoStrength) *m.e += de;
+        }
+      });
 }
 
 }  // namespace mp::strength

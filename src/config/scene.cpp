@@ -267,20 +267,11 @@ void read_materials(const DeckNode& root, Scene& s) {
     if (m.has("burn")) read_burn(m.child("burn"), spec);
     s.materials.push_back(spec);
   }
-  if (s.materials.size() > 1)
-    for (std::size_t q = 0; q < s.materials.size(); ++q)
-      if (s.materials[q].burn.on)
-        list[q].child("burn").fail(
-            "burn in a multi-material scene is not supported yet (single-material scenes only; "
-            "issue #13)");
-  if (s.materials.size() > 1)
-    for (std::size_t q = 0; q < s.materials.size(); ++q)
-      if (!s.materials[q].strength.model.empty())
-        list[q]
-            .child("strength")
-            .fail(
-                "strength in a multi-material scene is not supported yet (single-material scenes "
-                "only; issue #12)");
+  // one explosive per scene (the burn module carries one burn fraction per cell)
+  int explosives = 0;
+  for (std::size_t q = 0; q < s.materials.size(); ++q)
+    if (s.materials[q].burn.on && ++explosives > 1)
+      list[q].child("burn").fail("a scene holds at most one explosive (material with 'burn')");
   if (s.materials.size() > 16)
     list.fail("a scene holds at most 16 materials, not " + std::to_string(s.materials.size()));
 }
@@ -514,6 +505,14 @@ Scene read_scene(const Deck& deck) {
         .child("remap")
         .fail("the unsplit remap runs single-material scenes only; use 'split' with " +
               std::to_string(s.materials.size()) + " materials");
+  if (s.materials.size() > 1 && s.numerics.closure == "relaxation")
+    for (const MaterialSpec& m : s.materials)
+      if (m.burn.on)
+        root.child("numerics")
+            .child("closure")
+            .fail(
+                "pressure relaxation does not know an explosive's burn fraction; use "
+                "'equal_strain' in a scene with burn");
 
   s.output.basename = s.name;
   if (root.has("output")) {

@@ -309,6 +309,18 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
     opt.strength = material_strength(scene_.materials[0]);
     opt.strength_rho0 = Real(scene_.materials[0].rho0 > 0 ? scene_.materials[0].rho0 : 1.0);
     opt.burn = material_burn(scene_.materials[0]);
+  } else {
+    // per material; the scene reader allows one explosive
+    opt.material_strength.n = int(scene_.materials.size());
+    for (std::size_t m = 0; m < scene_.materials.size(); ++m) {
+      const MaterialSpec& ms = scene_.materials[m];
+      opt.material_strength.f[m] = material_strength(ms);
+      opt.material_strength.rho0[m] = Real(ms.rho0 > 0 ? ms.rho0 : 1.0);
+      if (ms.burn.on) {
+        opt.burn = material_burn(ms);
+        opt.burn.material = int(m);
+      }
+    }
   }
   std::vector<eos::Eos> eos;
   for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
@@ -433,6 +445,7 @@ void Simulation::initialize() {
         {ng, ng, ng},
         {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)}};
     mm->assign("init::materials", src);
+    if (burn::Burn* b = hydro_->burn()) b->light();  // through the explosive just painted
   }
   if (!mm)
     Kokkos::parallel_for(
@@ -771,6 +784,7 @@ void Simulation::restart(const std::string& path) {
           });
     }
     mm->assign("restart::assign", src);
+    if (burn::Burn* b = hydro_->burn()) b->light();
     auto rho = s.rho, e = s.e;
     Kokkos::parallel_for(
         "restart::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
