@@ -32,12 +32,21 @@ TEST(MultiMaterialModules, ChargeConservesMassAndEnergyToRoundOff) {
   std::printf("charge_3d: %ld cycles, total energy change %.3e (round-off bound %.3e)\n",
               r.result.cycles, de, bound);
   EXPECT_LT(std::abs(de), bound);
+  const double total = r.result.start.mass;
   for (std::size_t q = 0; q < m0.size(); ++q) {
     const double dm = (m1[q] - m0[q]) / m0[q];
-    // 1e-13: a few hundred cycles of round-off on the material's mass (observed <= 4e-14;
-    // the outflow boundary is reached by nothing but air at rest by t = 2.6)
-    std::printf("  material %zu: mass %.9e -> %.9e, relative change %.3e\n", q, m0[q], m1[q], dm);
-    EXPECT_LT(std::abs(dm), 1e-13) << "material " << q;
+    // Double: 1e-13 of the material's own mass, a few hundred cycles of round-off (observed
+    // <= 4e-14; the outflow boundary is reached by nothing but air at rest by t = 2.6). Float:
+    // the build's min_fraction floor (4.8e-7 of a cell) hands slivers to a cell's largest
+    // material, so a material's mass moves by up to that much of a cell's mass per removal:
+    // bounded by 2e-6 of the scene's mass (observed 7.3e-7, air gaining what slivers of
+    // products left; the total is kept to round-off).
+    const double bound = test::by_precision(1e-13 * m0[q], 2e-6 * total);
+    std::printf(
+        "  material %zu: mass %.9e -> %.9e, relative change %.3e (change %.3e, bound "
+        "%.3e)\n",
+        q, m0[q], m1[q], dm, m1[q] - m0[q], bound);
+    EXPECT_LT(std::abs(m1[q] - m0[q]), bound) << "material " << q;
   }
   const Mesh& mesh = r.sim->mesh();
   const auto f = test::gather(mesh, r.sim->hydro().burn()->fraction(), Centering::Cell);
