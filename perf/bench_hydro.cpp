@@ -18,18 +18,16 @@
 
 #include "bytes_model.hpp"
 #include "config/scene.hpp"
-#include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
 #include "report.hpp"
+#include "runtime.hpp"
 
 using namespace mp;
 
 int main(int argc, char** argv) {
-  mp::prepare_mpi_environment();
-  MPI_Init(&argc, &argv);
-  Kokkos::initialize(argc, argv);
+  const mp::perf::Runtime runtime(argc, argv);
   int rc = 0;
   {
     CLI::App app{"minipagosa single-material hydro benchmark"};
@@ -187,7 +185,5 @@ int main(int argc, char** argv) {
       }
     }
   }
-  Kokkos::finalize();
-  MPI_Finalize();
   return rc;
 }

@@ -38,13 +38,13 @@
 #include <thread>
 
 #include "config/scene.hpp"
-#include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
 #include "memory.hpp"
 #include "protocol.hpp"
 #include "report.hpp"
+#include "runtime.hpp"
 
 using namespace mp;
 using perf::cpu_sample;
@@ -175,9 +175,7 @@ std::array<double, kColumns_n> columns(const LayoutRun& r, int cycles) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  mp::prepare_mpi_environment();
-  MPI_Init(&argc, &argv);
-  Kokkos::initialize(argc, argv);
+  const mp::perf::Runtime runtime(argc, argv);
   int rc = 0;
   {
     CLI::App app{"minipagosa dense vs compact material layout benchmark"};
@@ -408,7 +406,5 @@ int main(int argc, char** argv) {
       }
     }
   }
-  Kokkos::finalize();
-  MPI_Finalize();
   return rc;
 }

@@ -49,12 +49,12 @@
 #include <sstream>
 
 #include "config/scene.hpp"
-#include "core/mpi_env.hpp"
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
 #include "protocol.hpp"
 #include "report.hpp"
+#include "runtime.hpp"
 
 using namespace mp;
 using nlohmann::json;
@@ -619,9 +619,7 @@ int check(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  mp::prepare_mpi_environment();
-  MPI_Init(&argc, &argv);
-  Kokkos::initialize(argc, argv);
+  const mp::perf::Runtime runtime(argc, argv);
   int rc = 0;
   try {
     rc = check(argc, argv);
@@ -629,7 +627,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "perf_check: error: %s\n", e.what());
     rc = 2;
   }
-  Kokkos::finalize();
-  MPI_Finalize();
   return rc;
 }

@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "config/scene.hpp"
-#include "core/mpi_env.hpp"
 #include "driver/simulation.hpp"
+#include "runtime.hpp"
 
 using namespace mp;
 
@@ -64,9 +64,7 @@ Outcome run(const std::string& deck, std::vector<std::string> ov, bool separate,
 }  // namespace
 
 int main(int argc, char** argv) {
-  mp::prepare_mpi_environment();
-  MPI_Init(&argc, &argv);
-  Kokkos::initialize(argc, argv);
+  const mp::perf::Runtime runtime(argc, argv);
   int rc = 0;
   {
     CLI::App app{"time-step rule study"};
@@ -118,7 +116,5 @@ int main(int argc, char** argv) {
       }
     }
   }
-  Kokkos::finalize();
-  MPI_Finalize();
   return rc;
 }

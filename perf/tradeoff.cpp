@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "config/scene.hpp"
-#include "core/mpi_env.hpp"
 #include "driver/simulation.hpp"
 #include "exact/norms.hpp"
+#include "runtime.hpp"
 
 using namespace mp;
 
@@ -238,11 +238,7 @@ int sweep_main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  mp::prepare_mpi_environment();
-  MPI_Init(&argc, &argv);
-  Kokkos::initialize(argc, argv);
+  const mp::perf::Runtime runtime(argc, argv);
   const int rc = sweep_main(argc, argv);
-  Kokkos::finalize();
-  MPI_Finalize();
   return rc;
 }

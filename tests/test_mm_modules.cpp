@@ -41,12 +41,12 @@ TEST(MultiMaterialModules, ChargeConservesMassAndEnergyToRoundOff) {
     // material, so a material's mass moves by up to that much of a cell's mass per removal:
     // bounded by 2e-6 of the scene's mass (observed 7.3e-7, air gaining what slivers of
     // products left; the total is kept to round-off).
-    const double bound = test::by_precision(1e-13 * m0[q], 2e-6 * total);
+    const double mass_bound = test::by_precision(1e-13 * m0[q], 2e-6 * total);
     std::printf(
         "  material %zu: mass %.9e -> %.9e, relative change %.3e (change %.3e, bound "
         "%.3e)\n",
-        q, m0[q], m1[q], dm, m1[q] - m0[q], bound);
-    EXPECT_LT(std::abs(m1[q] - m0[q]), bound) << "material " << q;
+        q, m0[q], m1[q], dm, m1[q] - m0[q], mass_bound);
+    EXPECT_LT(std::abs(m1[q] - m0[q]), mass_bound) << "material " << q;
   }
   const Mesh& mesh = r.sim->mesh();
   const auto f = test::gather(mesh, r.sim->hydro().burn()->fraction(), Centering::Cell);

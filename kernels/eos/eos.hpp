@@ -78,6 +78,17 @@ struct Eos {
     return msqrt(mmax(sound_speed2(rho, e), kSoundSpeed2Floor));
   }
 
+  // The lowest specific energy the health check accepts in a mixed cell. A Mie-Grueneisen
+  // solid measures e from its ambient reference state, so it may fall below 0 (colder than
+  // ambient; equal strain makes a cold solid expand with a gas at its half-step pressure):
+  // -c0^2 / 100 (copper 1.6e-3 cm^2/us^2, about 400 K of cooling at its c_v of 383 J/(kg K):
+  // colder than absolute zero). Every other EOS: 0. docs/numerics.md, "Health check".
+  Real energy_floor() const {
+    if (kind != kMieGruneisen) return 0;
+    const Real c0 = params[1];
+    return -c0 * c0 / 100;
+  }
+
   KOKKOS_INLINE_FUNCTION MieGruneisen mie_gruneisen() const {
     return MieGruneisen{params[0], params[1], params[2], params[3]};
   }

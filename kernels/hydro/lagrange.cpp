@@ -54,16 +54,8 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     for (int m = 0; m < mats_.n; ++m) mats_.eos[m] = eos[m];
     mm_ = std::make_unique<mat::MaterialState>(mesh, opt.layout, mats_.n, s_.rho, s_.e, s_.p,
                                                s_.p_half);
-    // A Mie-Grueneisen solid in a mixed cell may fall below its ambient reference energy
-    // (equal strain makes it expand with a gas, at the pressure of its half step): the health
-    // check stops it only below -c0^2 / 100 (copper 1.6e-3 cm^2/us^2, about 400 K of cooling at
-    // its c_v of 383 J/(kg K): colder than absolute zero). docs/numerics.md, "Health check".
-    std::vector<Real> floors(mats_.n, Real(0));
-    for (int m = 0; m < mats_.n; ++m)
-      if (mats_.eos[m].kind == eos::kMieGruneisen) {
-        const Real c0 = mats_.eos[m].params[1];
-        floors[m] = -c0 * c0 / 100;
-      }
+    std::vector<Real> floors;  // what each EOS accepts below 0 (eos.hpp energy_floor)
+    for (int m = 0; m < mats_.n; ++m) floors.push_back(mats_.eos[m].energy_floor());
     mm_->set_energy_floors(floors);
   }
   if (opt.strength.kind != strength::kNoStrength) {
