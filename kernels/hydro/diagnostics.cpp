@@ -115,27 +115,25 @@ Health Hydro::check() const {
   // key = ((cell * kBadKinds + quantity) * 8 + top): lowest cell first, then its first bad
   // quantity; `top` marks a node of the last node layer (bit d: along axis d), which belongs to
   // no owned cell and is reported with the owned cell below it.
-  long first = LONG_MAX;
-  Kokkos::parallel_reduce(
-      "health::cells", mesh_.cells(Region::Owned),
-      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-        const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
-        const long what = !(r > 0) || !misfinite(r)      ? kBadDensity
-                          : !(en >= 0) || !misfinite(en) ? kBadEnergy
-                          : !misfinite(pr)               ? kBadPressure
-                                                         : kNotBad;
-        if (what < 0) return;
-        const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
-        if (key < acc) acc = key;
-      },
-      Kokkos::Min<long>(first));
-  // Every owned node, the last layer [ng + nl] included.
+  // Every owned cell and every owned node, the last node layer [ng + nl] included, in one
+  // launch over the owned nodes (the owned cells are the nodes below the last layer).
   const int tx = Mesh::ng + mesh_.owned_cells(0), ty = Mesh::ng + mesh_.owned_cells(1),
             tz = Mesh::ng + mesh_.owned_cells(2);
-  long first_node = LONG_MAX;
+  long first = LONG_MAX;
   Kokkos::parallel_reduce(
-      "health::nodes", mesh_.nodes(Region::Owned),
+      "health::check", mesh_.nodes(Region::Owned),
       KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+        if (i < tx && j < ty && k < tz) {
+          const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
+          const long what = !(r > 0) || !misfinite(r)      ? kBadDensity
+                            : !(en >= 0) || !misfinite(en) ? kBadEnergy
+                            : !misfinite(pr)               ? kBadPressure
+                                                           : kNotBad;
+          if (what >= 0) {
+            const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
+            if (key < acc) acc = key;
+          }
+        }
         const long what = !misfinite(u(i, j, k))   ? kBadVelocityX
                           : !misfinite(v(i, j, k)) ? kBadVelocityY
                           : !misfinite(w(i, j, k)) ? kBadVelocityZ
@@ -147,8 +145,7 @@ Health Hydro::check() const {
         const long key = (cell * kBadKinds + what) * 8 + top;
         if (key < acc) acc = key;
       },
-      Kokkos::Min<long>(first_node));
-  first = std::min(first, first_node);
+      Kokkos::Min<long>(first));
   long global_key = LONG_MAX;
   MPI_Allreduce(&first, &global_key, 1, MPI_LONG, MPI_MIN, mesh_.comm());
   long global_first = global_key == LONG_MAX ? LONG_MAX : global_key / (8 * kBadKinds);

@@ -153,18 +153,24 @@ void Hydro::viscosity() {
            (w(i, j, k + 1) + w(i + 1, j, k + 1) + w(i, j + 1, k + 1) + w(i + 1, j + 1, k + 1) -
             w(i, j, k) - w(i + 1, j, k) - w(i, j + 1, k) - w(i + 1, j + 1, k));
   };
-  Kokkos::deep_copy(q, Real(0));
   // Owned cells and one ghost layer (the nodes of the owned region read them); the limiter
-  // reads the neighbours along each axis.
+  // reads the neighbours along each axis. The outer ghost layer gets q = 0 in the same launch.
   // Compression switch (Wilkins, J. Comput. Phys. 36:281, 1980): no viscosity where the cell's
   // volume grows (div u >= 0, from the same face-averaged jumps), even if one axis compresses:
   // q > 0 in an expanding cell takes internal energy (q dV > 0) and puts it into the nodes,
   // which drove cold solids and light materials of mixed cells negative (docs/numerics.md).
   // One-dimensional flows are unchanged (the jump along the flow sets both).
   const Geometry g = mesh_.geometry();
+  const int plo = Mesh::ng - 1;
+  const int phi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
+                      Mesh::ng + mesh_.owned_cells(2) + 1};
   const Real rx = Real(1) / g.dx[0], ry = Real(1) / g.dx[1], rz = Real(1) / g.dx[2];
   Kokkos::parallel_for(
-      "lagrange::viscosity", mesh_.cells_padded(1), KOKKOS_LAMBDA(int i, int j, int k) {
+      "lagrange::viscosity", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+        if (i < plo || j < plo || k < plo || i >= phi[0] || j >= phi[1] || k >= phi[2]) {
+          q(i, j, k) = 0;
+          return;
+        }
         if (jump_x(i, j, k) * rx + jump_y(i, j, k) * ry + jump_z(i, j, k) * rz >= 0) {
           q(i, j, k) = 0;
           return;
@@ -185,20 +191,16 @@ void Hydro::volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Rea
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const Real ax = dt * g.dx[1] * g.dx[2] * Real(0.25), ay = dt * g.dx[0] * g.dx[2] * Real(0.25),
              az = dt * g.dx[0] * g.dx[1] * Real(0.25);
+  // One launch for the three face sets: the node-extent box, each face set on its own range.
   Kokkos::parallel_for(
-      "lagrange::volume_flux_x", Policy3({0, 0, 0}, {ex + 1, ey, ez}),
+      "lagrange::volume_flux", Policy3({0, 0, 0}, {ex + 1, ey + 1, ez + 1}),
       KOKKOS_LAMBDA(int i, int j, int k) {
-        fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
-      });
-  Kokkos::parallel_for(
-      "lagrange::volume_flux_y", Policy3({0, 0, 0}, {ex, ey + 1, ez}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
-      });
-  Kokkos::parallel_for(
-      "lagrange::volume_flux_z", Policy3({0, 0, 0}, {ex, ey, ez + 1}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
+        if (j < ey && k < ez)
+          fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
+        if (i < ex && k < ez)
+          fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
+        if (i < ex && j < ey)
+          fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
       });
 }
 
@@ -276,29 +278,40 @@ Health Hydro::lagrange(Real dt) {
   volume_fluxes(ub, vb, wb, dt);
   // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
   if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
-  if (mm_)
+  // The Lagrangian volumes must stay positive (owned cells). A single-material cycle counts
+  // them in the corrector's launch; a multi-material one in a launch of its own.
+  const Real vmin = vol;
+  const int olo[3] = {Mesh::ng, Mesh::ng, Mesh::ng};
+  const int ohi[3] = {Mesh::ng + mesh_.owned_cells(0), Mesh::ng + mesh_.owned_cells(1),
+                      Mesh::ng + mesh_.owned_cells(2)};
+  long bad = 0;
+  if (mm_) {
     mm_corrector(vol);
-  else
-    Kokkos::parallel_for(
-        "lagrange::corrector", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+  } else {
+    Kokkos::parallel_reduce(
+        "lagrange::corrector", mesh_.cells(Region::All),
+        KOKKOS_LAMBDA(int i, int j, int k, long& n) {
           const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
           const Real mass = rho(i, j, k) * vol;
           e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
           rho(i, j, k) = mass / (vol + dv);
-        });
+          if (i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1] && k >= olo[2] && k < ohi[2] &&
+              !(vmin + dv > 0))
+            ++n;
+        },
+        bad);
+  }
   // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
   if (burn_) burn_->update(rho, double(dt));
 
-  // The Lagrangian volumes must stay positive.
-  const Real vmin = vol;
-  long bad = 0;
-  Kokkos::parallel_reduce(
-      "lagrange::volume_check", mesh_.cells(Region::Owned),
-      KOKKOS_LAMBDA(int i, int j, int k, long& n) {
-        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-        if (!(vmin + dv > 0)) ++n;
-      },
-      bad);
+  if (mm_)
+    Kokkos::parallel_reduce(
+        "lagrange::volume_check", mesh_.cells(Region::Owned),
+        KOKKOS_LAMBDA(int i, int j, int k, long& n) {
+          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+          if (!(vmin + dv > 0)) ++n;
+        },
+        bad);
   long total_bad = 0;
   MPI_Allreduce(&bad, &total_bad, 1, MPI_LONG, MPI_SUM, mesh_.comm());
   Health h;
