@@ -74,7 +74,12 @@ struct LaunchCounter {
 
 struct Counted {
   long total = 0, halo_fill = 0, halo_pack = 0, halo_other = 0;
+  long in_place = 0, rebuild = 0;  // compact material updates: in place, pool rebuild passes
 };
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
 
 // Launches of one cycle (time step, Lagrange, remap, EOS, viscosity, health check: what
 // bench_hydro times) of `deck` on a 16^3 mesh, after two untimed cycles.
@@ -114,6 +119,9 @@ Counted count_cycle(const std::string& deck, const std::vector<std::string>& ext
         c.halo_pack += n;
       else if (name.rfind("halo::", 0) == 0)
         c.halo_other += n;
+      if (ends_with(name, "::in_place")) c.in_place += n;
+      if (ends_with(name, "::count") || ends_with(name, "::scan") || ends_with(name, "::fill"))
+        if (name != "halo::fill") c.rebuild += n;
     }
     std::printf("  total %ld, halo::fill %ld, halo::pack %ld\n", c.total, c.halo_fill, c.halo_pack);
   }
@@ -160,4 +168,16 @@ TEST(Launches, SingleMaterialCycleTwoRanks) {
   EXPECT_EQ(c.halo_pack, 11);
   EXPECT_EQ(c.halo_other, 0);
   EXPECT_EQ(c.total, 68);  // 44 + the 24 launches of kernels/hydro
+}
+
+// Compact layout, two materials at rest in pressure balance with a plane of mixed cells: no
+// cell changes its materials, so every material update (the remap's three sweeps, the four
+// material halo exchanges) is written in place (`::in_place`, one launch each) and the slot
+// pool is never rebuilt (no `::count`, `::scan`, `::fill` launch; issue #15).
+TEST(Launches, CompactUpdatesInPlace) {
+  if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
+  const Counted c = count_cycle("sod2.yaml", {"regions.1.hi=[0.53,1,1]", "regions.1.pressure=0.1",
+                                              "numerics.layout=compact"});
+  EXPECT_EQ(c.in_place, 7);  // 3 remap sweeps + 4 material exchanges
+  EXPECT_EQ(c.rebuild, 0);
 }

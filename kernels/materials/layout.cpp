@@ -17,9 +17,13 @@ namespace {
 // a ghost slab of sweep d took its content from that sweep's message (neighbour rank) or from
 // its mirror / wall cell (physical boundary) as that cell stood after sweep d-1; every other cell
 // kept its content. Walking back through the sweeps gives each ghost exactly the content that a
-// pool rebuild after every sweep would have stored, so one rebuild per exchange suffices.
+// pool rebuild after every sweep would have stored, so one update per exchange suffices (in
+// place where no ghost's materials change, else one rebuild; MaterialState::assign).
 template <class Dev>
 struct HaloSource {
+  // a ghost's content comes from owned cells (never changed here) and the messages, so ghosts
+  // may be written where they are (the dense layout always does)
+  static constexpr bool in_place = true;
   Dev dev;
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
@@ -112,6 +116,7 @@ MaterialState::MaterialState(const Mesh& mesh, LayoutKind kind, int nmat, Field3
     dense_.fe = face("dense::energy_flux");
     return;
   }
+  stamp_ = decltype(stamp_)("compact::stamp", ex_, ey_, ez_);
   for (CompactDev* c : {&compact_, &next_}) {
     c->nmat = nmat;
     c->mat = IntField3("compact::mat", ex_, ey_, ez_);
@@ -366,11 +371,10 @@ double MaterialState::bytes() const {
     return double(sizeof(Real)) * nmat_ * (5 * cells + 3 * double(ex_ + 1) * (ey_ + 1) * (ez_ + 1));
   // two buffer sets (the current one and the rebuild target, swapped after each rebuild),
   // each: three int cell arrays, per slot a material id, 5 state values and 6 face fluxes, and
-  // the mixed list
-  double b = 0;
+  // the mixed list; one byte per cell marks the cells an assign wrote in place
+  double b = cells;
   for (const CompactDev* c : {&compact_, &next_})
-    b += 3 * sizeof(int) * cells +
-         double(c->smat.extent(0)) * (sizeof(int) + 11 * sizeof(Real)) +
+    b += 3 * sizeof(int) * cells + double(c->smat.extent(0)) * (sizeof(int) + 11 * sizeof(Real)) +
          sizeof(int) * double(c->mixed.extent(0));
   return b;
 }

@@ -261,7 +261,10 @@ class MaterialState {
   Field3 rho_, e_, p_, ph_;
   DenseDev dense_;
   CompactDev compact_, next_;  // current and rebuild target (swapped after each rebuild)
-  Buffer send_[2], recv_[2];   // material halo messages, per side
+  // compact: 1 where this assign wrote a changed cell in place (written for every changed
+  // cell of an in-place source; read only for changed cells)
+  Kokkos::View<unsigned char***, MemSpace> stamp_;
+  Buffer send_[2], recv_[2];  // material halo messages, per side
   int ex_, ey_, ez_;
   struct Floors {
     Real e[kMaxMaterials] = {};
@@ -318,6 +321,35 @@ template <class S>
 struct OwnCellOnly<S, std::void_t<decltype(S::own_cell_only)>>
     : std::integral_constant<bool, S::own_cell_only> {};
 
+// A source whose content(i, j, k) of a changed cell reads no stored state of another changed
+// cell (the remap: its own cell and the face fluxes; the halo: owned cells and the messages)
+// declares
+//   static constexpr bool in_place = true;
+// The compact layout then writes every changed cell whose slot count stays the same straight
+// into the current pool (issue #15: no rebuild when no cell's material count changed).
+template <class S, class = void>
+struct InPlace : std::false_type {};
+template <class S>
+struct InPlace<S, std::void_t<decltype(S::in_place)>> : std::integral_constant<bool, S::in_place> {
+};
+
+// A changed cell's new content from the source; returns the count of materials present and
+// sets `id` to the last of them (0 for none).
+template <class Source>
+KOKKOS_INLINE_FUNCTION int new_content(const Source& src, int i, int j, int k, int nmat, Real* a,
+                                       Real* r, Real* en, int& id) {
+  for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+  src.content(i, j, k, a, r, en);
+  int n = 0;
+  id = 0;
+  for (int m = 0; m < nmat; ++m)
+    if (a[m] > 0) {
+      ++n;
+      id = m;
+    }
+  return n;
+}
+
 template <class Source>
 void MaterialState::assign(const std::string& name, const Source& src) {
   const int nmat = nmat_;
@@ -348,21 +380,70 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   CompactDev nw = next_;
   const int ey = ey_, ez = ez_;
   constexpr bool early = OwnCellOnly<Source>::value;
+  // In place first (sources that allow it): a changed cell that keeps its materials (the same
+  // pure material, or the same materials in its slots) is written where it is, and stamped; the
+  // layout (mat, first, nm, slot materials, the mixed list) is unchanged by it. Only when some
+  // cell's materials change does the rebuild below run, for the cells not stamped (a stamped
+  // cell is copied as it is).
+  // Every value written is the one the rebuild would write, so the fields do not depend on
+  // the path (dense == compact bit for bit holds either way).
+  auto stamp = stamp_;
+  if constexpr (InPlace<Source>::value) {
+    long moved = 0;
+    Kokkos::parallel_reduce(
+        name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+          if (!src.changed(i, j, k)) return;
+          Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+          int id = 0;
+          const int n = new_content(src, i, j, k, nmat, a, r, en, id);
+          // The same materials in the same slots: a neighbour's content may read this cell's
+          // layout (the remap reads the donor's material ids to split its face fluxes), so only
+          // values change here, never which material a pure cell or a slot holds.
+          const int om = old.mat(i, j, k), onm = old.nm(i, j, k);
+          bool same = onm == n && (om >= 0) == (n <= 1);
+          if (same && om >= 0) {
+            same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
+          } else if (same) {
+            int q = old.first(i, j, k);
+            for (int m = 0; m < nmat && same; ++m)
+              if (a[m] > 0) same = old.smat(q++) == m;
+          }
+          if (same && om < 0) {
+            int q = old.first(i, j, k);
+            for (int m = 0; m < nmat; ++m) {
+              if (!(a[m] > 0)) continue;
+              old.salpha(q) = a[m];
+              old.srho(q) = r[m];
+              old.se(q) = en[m];
+              old.sp(q) = 0;
+              ++q;
+            }
+          } else if (!same) {
+            stamp(i, j, k) = 0;
+            ++acc;  // the layout changes here: left to the rebuild
+            return;
+          }
+          cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+          stamp(i, j, k) = 1;
+        },
+        moved);
+    if (moved == 0) return;
+  }
+  // Changed and not yet written in place (every changed cell's stamp was written above).
+  constexpr bool stamped = InPlace<Source>::value;
+  auto pending = [=] KOKKOS_FUNCTION(int i, int j, int k) {
+    return src.changed(i, j, k) && !(stamped && stamp(i, j, k));
+  };
   Kokkos::parallel_for(
       name + "::count", Policy3({0, 0, 0}, {ex_, ey_, ez_}), KOKKOS_LAMBDA(int i, int j, int k) {
-        if (!src.changed(i, j, k)) {
+        if (!pending(i, j, k)) {
           nw.nm(i, j, k) = old.nm(i, j, k);
           return;
         }
         Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-        for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
-        src.content(i, j, k, a, r, en);
-        int n = 0, id = 0;
-        for (int m = 0; m < nmat; ++m)
-          if (a[m] > 0) {
-            ++n;
-            id = m;
-          }
+        int id = 0;
+        int n = new_content(src, i, j, k, nmat, a, r, en, id);
         if (early && n <= 1) {
           nw.mat(i, j, k) = id;
           cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
@@ -401,7 +482,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         }
         const int q0 = nw.first(i, j, k);
         if (n > 1) nw.mixed(-nw.mat(i, j, k) - 1) = (i * ey + j) * ez + k;
-        if (!src.changed(i, j, k)) {
+        if (!pending(i, j, k)) {
           const int id = old.mat(i, j, k);
           if (id >= 0) {
             nw.mat(i, j, k) = id;
