@@ -111,6 +111,47 @@ struct RemapSource {
     return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
   }
 
+  // The shortcut of MaterialState::assign (compact layout): a pure cell whose two face donors
+  // are the same pure material stays that material. The arithmetic is content()'s for one
+  // material, operand for operand, so the result is the same bit for bit.
+  static constexpr bool has_pure = true;
+  KOKKOS_INLINE_FUNCTION bool pure(int i, int j, int k, int& id, Real& r_out, Real& e_out) const {
+    if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
+      return false;
+    } else {
+      const int m = dev.mat(i, j, k);
+      if (m < 0) return false;
+      const int sx = d == 0, sy = d == 1, sz = d == 2;
+      const int fi = i + sx, fj = j + sy, fk = k + sz;
+      const Real flo = vf(i, j, k), fhi = vf(fi, fj, fk);
+      if (flo > 0 && dev.mat(i - sx, j - sy, k - sz) != m) return false;
+      if (!(fhi > 0) && dev.mat(fi, fj, fk) != m) return false;
+      Real V = 0, M = 0, E = 0;
+      V += Real(1) * vf(i, j, k);
+      M += Real(1) * mf(i, j, k);
+      E += Real(1) * ef(i, j, k);
+      V += Real(-1) * vf(fi, fj, fk);
+      M += Real(-1) * mf(fi, fj, fk);
+      E += Real(-1) * ef(fi, fj, fk);
+      const Real p0 = pre(i, j, k), p1 = post(i, j, k);
+      const Real a = 1, v0 = a * p0;
+      const Real m0 = v0 * rho(i, j, k);
+      const Real vol = v0 + V;
+      Real mass = m0 + M, ener = e(i, j, k) * m0 + E;
+      if (!(vol > 0)) return false;
+      if (nmat > 1) {  // content() adds the (empty) others' zeros to the largest material
+        mass += Real(0);
+        ener += Real(0);
+      }
+      const Real vsum = Real(0) + vol;
+      const Real af = vol / vsum;
+      r_out = mass / (af * p1);
+      e_out = ener / mass;
+      id = m;
+      return true;
+    }
+  }
+
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     read_donor(dev, rho, e, i, j, k, a, r, en);
     Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];

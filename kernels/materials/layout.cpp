@@ -44,6 +44,45 @@ struct HaloSource {
     return false;
   }
   KOKKOS_INLINE_FUNCTION int read(int i, int j, int k, Real* a, Real* r, Real* en) const;
+  // MaterialState::assign's shortcut, and the pack's: true when the content is one material,
+  // found without the per-material arrays (a pure stored cell or a pure cell's short record
+  // in a message; the compact layout only).
+  static constexpr bool has_pure = true;
+  KOKKOS_INLINE_FUNCTION bool pure(int i, int j, int k, int& id, Real& r, Real& en) const {
+    if constexpr (!std::is_same_v<Dev, CompactDev>) {
+      return false;
+    } else {
+      int idx[3] = {i, j, k};
+      for (int d = done - 1; d >= 0; --d) {
+        const int x = idx[d];
+        const int s = side_of(d, x);
+        if (s < 0) continue;
+        if (mode[d][s] == 0) {
+          int loc[3] = {idx[0], idx[1], idx[2]}, n[3] = {ext[0], ext[1], ext[2]};
+          loc[d] = s == 0 ? x : x - (ng + nl[d]);
+          n[d] = ng;
+          const long o = (loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2])) * nmat * 3;
+          const Buffer& b = recv[d][s];
+          const Real a0 = b(o);
+          if (!(a0 < 0)) return false;
+          id = int(-a0) - 1;
+          r = b(o + 1);
+          en = b(o + 2);
+          return true;
+        }
+        if (mode[d][s] == 1)
+          idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;
+        else
+          idx[d] = s == 0 ? ng : ng + nl[d] - 1;
+      }
+      const int m = dev.mat(idx[0], idx[1], idx[2]);
+      if (m < 0) return false;
+      id = m;
+      r = rho(idx[0], idx[1], idx[2]);
+      en = e(idx[0], idx[1], idx[2]);
+      return true;
+    }
+  }
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     int idx[3] = {i, j, k};
     for (int d = done - 1; d >= 0; --d) {
@@ -57,6 +96,15 @@ struct HaloSource {
         n[d] = ng;
         const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
         const Buffer& b = recv[d][s];
+        const Real a0 = b(cell * nmat * 3);
+        if (a0 < 0) {  // a pure cell's short record (pack): -(id + 1), rho, e
+          for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+          const int id = int(-a0) - 1;
+          a[id] = 1;
+          r[id] = b(cell * nmat * 3 + 1);
+          en[id] = b(cell * nmat * 3 + 2);
+          return 1;
+        }
         int cnt = 0;
         for (int m = 0; m < nmat; ++m) {
           const long o = (cell * nmat + m) * 3;
@@ -198,11 +246,21 @@ void MaterialState::exchange() {
         Kokkos::parallel_for(
             "matter::pack", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
             KOKKOS_LAMBDA(int i, int j, int k) {
-              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              before.content(i, j, k, a, r, en);
               int loc[3] = {i, j, k};
               loc[d] -= first;
               const long cell = loc[0] + long(n0) * (loc[1] + long(n1) * loc[2]);
+              int id = 0;
+              Real pr = 0, pe = 0;
+              if (before.pure(i, j, k, id, pr, pe)) {
+                // a pure cell sends 3 values, not 3 x nmat: -(id + 1), rho, e (the rest of its
+                // record is left unwritten; content() reads the short record)
+                buf(cell * nmat * 3) = -Real(id + 1);
+                buf(cell * nmat * 3 + 1) = pr;
+                buf(cell * nmat * 3 + 2) = pe;
+                return;
+              }
+              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+              before.content(i, j, k, a, r, en);
               for (int m = 0; m < nmat; ++m) {
                 const long o = (cell * nmat + m) * 3;
                 buf(o) = a[m];

@@ -333,6 +333,18 @@ template <class S>
 struct InPlace<S, std::void_t<decltype(S::in_place)>> : std::integral_constant<bool, S::in_place> {
 };
 
+// A source may also offer a shortcut for the commonest case, a cell that stays one material:
+//   static constexpr bool has_pure = true;
+//   bool pure(i, j, k, int& id, Real& rho, Real& e) const;
+// true only when content(i, j, k) would give exactly one material `id` with these values, bit
+// for bit (the same arithmetic on the same operands); false says "ask content()". It spares
+// the per-material arrays (3 x nmat values zeroed, filled and scanned per cell).
+template <class S, class = void>
+struct HasPure : std::false_type {};
+template <class S>
+struct HasPure<S, std::void_t<decltype(S::has_pure)>> : std::integral_constant<bool, S::has_pure> {
+};
+
 // A changed cell's new content from the source; returns the count of materials present and
 // sets `id` to the last of them (0 for none).
 template <class Source>
@@ -394,6 +406,17 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
         KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
           if (!src.changed(i, j, k)) return;
+          if constexpr (HasPure<Source>::value) {
+            int pid = -1;
+            Real pr = 0, pe = 0;
+            if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) &&
+                pid == old.mat(i, j, k)) {
+              crho(i, j, k) = pr;  // (cell_average of one material: its own values)
+              ce(i, j, k) = pe;
+              stamp(i, j, k) = 1;
+              return;
+            }
+          }
           Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
           int id = 0;
           const int n = new_content(src, i, j, k, nmat, a, r, en, id);
