@@ -60,14 +60,15 @@ struct ShockRun {
 
 // Unburnt PBX 9404 at its solid's reference density 1.844 (p = 0 on pbx9404_unreacted) moving
 // at -up onto the wall at x = 0: a shock runs right, the material behind it at rest, so in the
-// frame of the unshocked explosive Us = x_shock / t + up. The detonator fires at t = 1e3 us,
-// far beyond the run: F stays 0 (no volume burn), the explosive is all unreacted solid.
+// frame of the unshocked explosive Us = x_shock / t + up (the outflow end at x = 1 feeds in
+// more of the same moving explosive). The detonator fires at t = 1e3 us, far beyond the run: F
+// stays 0 (no volume burn), the explosive is all unreacted solid.
 ShockRun run_shock(int n, double up, double t_end) {
   auto r = test::run_scene(
       deck({"materials.0.burn.detonators=[{type: plane, at: [0,0,0], "
             "normal: [1,0,0], time: 1000}]",
             "regions.0.density=1.844", "regions.0.velocity=[" + std::to_string(-up) + ",0,0]",
-            "boundaries.x=reflective", "time.end=" + std::to_string(t_end)},
+            "time.end=" + std::to_string(t_end)},
            n));
   EXPECT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
@@ -98,8 +99,9 @@ ShockRun run_shock(int n, double up, double t_end) {
 
 // The cited unreacted Hugoniot, Us = c0 + s up (pbx9404_unreacted: c0 0.2423 cm/us, s 1.883,
 // rho0 1.844), in the cycle: a 3.1 GPa shock (up = 0.05 cm/us, Us = 0.33645 cm/us) through
-// unburnt explosive. The shock speed is within 0.5 % at 200 and 400 cells, the error falling,
-// and the shocked pressure is rho0 Us up within 0.5 %.
+// unburnt explosive, to t = 1.5 us. Observed: Us -0.243 % / -0.125 % at 200 / 400 cells (first
+// order: the shock's smeared start at the wall), the shocked pressure rho0 Us up to +0.008 % /
+// +0.002 %; bounds 0.5 % each and the Us error falling.
 TEST(BurnUnreacted, ShockInUnburntExplosiveFollowsTheCitedHugoniot) {
   const auto* u = materials::find_material("pbx9404_unreacted");
   ASSERT_NE(u, nullptr);
@@ -107,7 +109,7 @@ TEST(BurnUnreacted, ShockInUnburntExplosiveFollowsTheCitedHugoniot) {
   const double up = 0.05, us = c0 + s * up, p1 = rho0 * us * up;
   double prev = 0;
   for (int n : {200, 400}) {
-    const ShockRun r = run_shock(n, up, 2.0);
+    const ShockRun r = run_shock(n, up, 1.5);
     const double err = r.us / us - 1, perr = r.p1 / p1 - 1;
     std::printf(
         "unreacted PBX 9404, up %.3f cm/us, %d cells: Us %.5f cm/us (Hugoniot %.5f, %+.3f %%), "
@@ -151,6 +153,8 @@ DetRun run_detonation(int n, bool unreacted) {
 // The planar detonation with the unreacted EOS: the p_cj/2 level runs at D within 1 % (D =
 // 0.880 cm/us, p_cj = 0.37 Mbar, Dobratz & Crawford), its error falling with the cell size, and
 // the peak pressure is p_cj within 5 %; the same runs with p = F P_products, for comparison.
+// Observed at t = 0.8 us, 200 / 400 cells: unreacted EOS -0.840 % / -0.422 % (the level 1.18 /
+// 1.19 cells behind D t), peak 0.965 / 0.988 p_cj; p = F P -0.967 % / -0.468 %, 0.967 / 0.990.
 TEST(BurnUnreacted, PlanarDetonationStillReachesTheCjState) {
   const auto* pr = materials::find_material("pbx9404_products");
   const double d = pr->param("D"), pcj = pr->param("p_cj");
