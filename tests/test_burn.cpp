@@ -540,8 +540,8 @@ TEST(BurnFraction, MixedPressureAndSoundSpeed) {
 // The mixture closure p = (1 - F) P_u(rho, e - e0) + F P_products(rho, e): the unreacted solid's
 // pressure at F = 0, the products' at F = 1, and c^2 at frozen F against an isentropic finite
 // difference. The unreacted solid is a FIXTURE, not a material: a Mie-Grueneisen solid with
-// magnitudes typical of an HMX-based explosive (rho0 1.84, c0 0.25 cm/us, s 2, Gamma0 1), since
-// the library has no cited unreacted-explosive EOS yet.
+// magnitudes typical of an HMX-based explosive (rho0 1.84, c0 0.25 cm/us, s 2, Gamma0 1), written
+// before the library had one (pbx9404_unreacted; in the cycle: tests/test_burn_unreacted.cpp).
 TEST(BurnFraction, MixtureClosure) {
   const auto* m = mp::materials::find_material("pbx9404_products");
   const auto prod = mp::materials::make_eos(*m);

@@ -163,4 +163,19 @@ KOKKOS_INLINE_FUNCTION Real he_sound_speed2_mixed(const eos::Eos& unreacted,
          f * (products.sound_speed2(rho, e) - pp * ep / r2) + p * pe / r2;
 }
 
+// What the cycle uses (module.hpp mixed()): he_pressure_mixed with each phase's tension cutoff
+// (eos.hpp pressure_cut; equal to he_pressure_mixed where neither phase has one), and the
+// frozen-F sound speed floored as the EOS module floors its own.
+KOKKOS_INLINE_FUNCTION Real he_pressure_mixed_cut(const eos::Eos& unreacted,
+                                                  const eos::Eos& products, Real e0, Real f,
+                                                  Real rho, Real e) {
+  return (1 - f) * unreacted.pressure_cut(rho, e - e0) + f * products.pressure_cut(rho, e);
+}
+KOKKOS_INLINE_FUNCTION Real he_sound_speed_mixed(const eos::Eos& unreacted,
+                                                 const eos::Eos& products, Real e0, Real f,
+                                                 Real rho, Real e) {
+  return msqrt(
+      mmax(he_sound_speed2_mixed(unreacted, products, e0, f, rho, e), eos::kSoundSpeed2Floor));
+}
+
 }  // namespace mp::burn

@@ -20,6 +20,9 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   Kokkos::deep_copy(t_light_, Real(kNeverLit));
   detonators_ = setup.detonators;
   programmed_ = setup.programmed;
+  mixed_ = setup.mixed;
+  unreacted_ = setup.unreacted;
+  e0_ = setup.e0;
   if (!setup.programmed || setup.material >= 0) return;
   // every cell is explosive in a single-material scene, so the Huygens construction is the
   // straight-line distance

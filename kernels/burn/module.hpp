@@ -1,9 +1,11 @@
 // The burn module of a single-material scene whose material is an explosive (DESIGN.md §4 item 6
 // and §4.1): it owns the burn fraction F of every cell and the cells' lighting times, and the
 // cycle calls it at four seams — the pressure after the EOS and at the half step (p = F P(rho,
-// e), the products EOS scaled by F: burn.hpp he_pressure), the burn-fraction update after the
-// Lagrangian step, and the remap (F per unit mass). Point functions in burn.hpp, the Huygens
-// lighting-time construction in lighting.hpp.
+// e), the products EOS scaled by F: burn.hpp he_pressure; or, with an unreacted EOS (mixed()),
+// p = (1 - F) P_u(rho, e - e0) + F P(rho, e): burn.hpp he_pressure_mixed, evaluated in the
+// hydro's EOS and predictor kernels), the burn-fraction update after the Lagrangian step, and
+// the remap (F per unit mass). Point functions in burn.hpp, the Huygens lighting-time
+// construction in lighting.hpp.
 //
 // The explosive's internal energy includes its chemical energy (the region's `energy`), so the
 // products EOS at (rho0, e0) is the constant-volume explosion state and F releases it; total
@@ -39,6 +41,11 @@ struct BurnSetup {
   bool programmed = true, volume_burn = false;
   std::vector<Detonator> detonators;
   int material = -1;  // the explosive's material id in a multi-material scene
+  // The unreacted solid's EOS (burn.hpp he_pressure_mixed), off unless mixed: then the
+  // explosive's pressure is (1 - F) P_u(rho, e - e0) + F P_products(rho, e) instead of F P.
+  bool mixed = false;
+  eos::Eos unreacted;
+  Real e0 = 0;  // unreacted energy origin, cm^2/us^2 (E0 / rho0 of the products)
 };
 
 class Burn {
@@ -67,6 +74,10 @@ class Burn {
   // The clock a restart resumes from (the run's time; the module's starts at 0 with the run).
   void set_time(double t) { time_ = t; }
   const BurnParams& params() const { return params_; }
+  // The closure with the unreacted solid's EOS (BurnSetup::mixed), its EOS and energy origin.
+  bool mixed() const { return mixed_; }
+  const eos::Eos& unreacted() const { return unreacted_; }
+  Real e0() const { return e0_; }
 
  private:
   void set_lighting(const std::vector<std::uint8_t>& explosive,
@@ -77,6 +88,9 @@ class Burn {
   int material_ = -1;
   std::vector<Detonator> detonators_;
   bool programmed_ = true;
+  bool mixed_ = false;
+  eos::Eos unreacted_;
+  Real e0_ = 0;
   BurnParams params_;
   Field3 f_, t_light_, scratch_;
   double time_ = 0;

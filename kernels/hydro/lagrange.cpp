@@ -122,6 +122,21 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
     return;
   }
   const auto eos = eos_;
+  if (burn_ && burn_->mixed()) {
+    // an explosive with an unreacted EOS: p and c of the two phases at frozen F (burn.hpp)
+    const auto un = burn_->unreacted();
+    const Real e0 = burn_->e0();
+    auto f = burn_->fraction();
+    Kokkos::parallel_for(
+        "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real fi = f(i, j, k), r = rho(i, j, k), ei = e(i, j, k);
+          p(i, j, k) = burn::he_pressure_mixed_cut(un, eos, e0, fi, r, ei);
+          c(i, j, k) = burn::he_sound_speed_mixed(un, eos, e0, fi, r, ei);
+        });
+    if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
+    burn_->raise_sound_speed(c);
+    return;
+  }
   Kokkos::parallel_for(
       "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
         p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
@@ -213,9 +228,23 @@ Health Hydro::lagrange(Real dt) {
 
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
   volume_fluxes(s_.u, s_.v, s_.w, Real(0.5) * dt);
-  if (mm_)
+  const bool mixed = burn_ && !mm_ && burn_->mixed();
+  if (mm_) {
     mm_predictor(vol);
-  else
+  } else if (mixed) {
+    // an explosive with an unreacted EOS: the two phases at the half step (burn.hpp)
+    const auto un = burn_->unreacted();
+    const Real e0 = burn_->e0();
+    auto f = burn_->fraction();
+    Kokkos::parallel_for(
+        "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+          const Real mass = rho(i, j, k) * vol;
+          const Real v_half = vol + dv;
+          const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
+          ph(i, j, k) = burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), mass / v_half, e_half);
+        });
+  } else {
     Kokkos::parallel_for(
         "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
@@ -224,7 +253,8 @@ Health Hydro::lagrange(Real dt) {
           const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
           ph(i, j, k) = eos.pressure_cut(mass / v_half, e_half);
         });
-  if (burn_ && !mm_) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
+  }
+  if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
   // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
   const bool has_strength = strength_ != nullptr;
   std::array<Field3, 3> fs;

@@ -331,6 +331,10 @@ struct BurnHook {
   int material = -1;
   Field3 f;
   Real d_cj = 0;
+  // with an unreacted EOS: p = (1 - F) P_u(rho, e - e0) + F P(rho, e) (burn.hpp)
+  bool mixed = false;
+  eos::Eos unreacted;
+  Real e0 = 0;
 };
 
 // The viscous work of a mixed cell goes to its materials in proportion to their mass (the
@@ -349,7 +353,7 @@ KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
 
 BurnHook burn_hook(const burn::Burn* b) {
   if (!b) return {};
-  return {b->material(), b->fraction(), b->params().d_cj};
+  return {b->material(), b->fraction(), b->params().d_cj, b->mixed(), b->unreacted(), b->e0()};
 }
 
 }  // namespace
@@ -367,12 +371,20 @@ void Hydro::mm_equation_of_state() const {
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (!(m.alpha > 0)) continue;
-          Real pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
-          const Real cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
-          if (m.m == bh.material) {
+          Real pm, cm;
+          if (bh.mixed && m.m == bh.material) {
             const Real f = bh.f(i, j, k);
-            pm *= f;
+            pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+            cm = burn::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
             unburnt = f < 1;
+          } else {
+            pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
+            cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
+            if (m.m == bh.material) {
+              const Real f = bh.f(i, j, k);
+              pm *= f;
+              unburnt = f < 1;
+            }
           }
           *m.p = pm;
           psum += m.alpha * pm;
@@ -412,8 +424,14 @@ void Hydro::mm_predictor(Real vol) {
           if (!(m.alpha > 0)) continue;
           const Real mass = *m.rho * vol;
           const Real e_half = pdv_energy(*m.e, *m.p, several ? qs * *m.rho : q(i, j, k), dv, mass);
-          Real pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
-          if (m.m == bh.material) pm *= bh.f(i, j, k);
+          Real pm;
+          if (bh.mixed && m.m == bh.material) {
+            pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
+                                             mass / v_half, e_half);
+          } else {
+            pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
+            if (m.m == bh.material) pm *= bh.f(i, j, k);
+          }
           *m.ph = pm;
           sum += m.alpha * pm;
           last = pm;

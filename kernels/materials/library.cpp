@@ -2,8 +2,8 @@
 //
 // Materials the issue asked for but that are NOT here, because no source for their parameters
 // could be checked when the table was written (add them with a citation once checked, never from
-// memory): cyclotol 77/23 (JWL products), PBX 9501 (JWL products). What was found and why it
-// was not enough is in docs/materials.md.
+// memory): cyclotol 77/23 (JWL products), PBX 9501 (JWL products), unreacted Composition B
+// (solid EOS). What was found and why it was not enough is in docs/materials.md.
 #include "materials/library.hpp"
 
 #include "core/error.hpp"
@@ -128,6 +128,27 @@ const std::vector<MaterialData>& table() {
        {{"c0", 0.4029}, {"s", 1.237}, {"gamma0", 1.54}},
        "McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, Academic Press 1970, "
        "appendix: W rho0 19.224, C0 4.029 km/s, S 1.237, Gamma0 1.54"},
+
+      // ---- unreacted explosive (Mie-Grueneisen, linear Us-up) ---------------------------------
+      // The solid explosive ahead of the burn (materials[].burn.unreacted; kernels/burn/burn.hpp
+      // he_pressure_mixed). PBX 9404, the HOM solid of C. L. Mader, "Numerical Modeling of
+      // Explosives and Propellants" (its CD, run/fire.out/9404.OUT; "see also page 219-
+      // LA-2900"), read in the transcription kept in LANL EOSlib (github.com/lanl/EOSlib,
+      // DATA/HOM.data, entry UsUp=PBX9404, units hydro::HiP = cm, us, g, Mbar): rho0 = 1.844
+      // g/cm^3, c0 = 0.2423 cm/us, s = 1.883, G0 = G1 = 0.675. EOSlib's Grueneisen form is
+      // Gamma/V = (G0 - G1)/V + G1/V0 (src/EOStypes/MieGruneisen/Subs/UsUpParamsFunc.C), so
+      // G0 = G1 is rho Gamma = rho0 Gamma0, the form of eos/mie_gruneisen.hpp. Mader's book and
+      // LA-2900 were not read. No cited unreacted Composition B (or cyclotol) set could be read
+      // here (docs/materials.md); this is the only explosive whose unreacted solid is in.
+      // Its rho0 (1.844) is not the products row's (pbx9404_products, 1.84): explosive at 1.84
+      // sits at -2.3e-4 Mbar on this EOS (docs/numerics.md, "Burn").
+      {"pbx9404_unreacted",
+       "mie_gruneisen",
+       1.844,
+       {{"c0", 0.2423}, {"s", 1.883}, {"gamma0", 0.675}},
+       "Mader, Numerical Modeling of Explosives and Propellants, HOM solid PBX 9404 (CD "
+       "run/fire.out/9404.OUT; LA-2900 p. 219), as transcribed in LANL EOSlib DATA/HOM.data "
+       "UsUp=PBX9404: rho0 1.844, c0 0.2423 cm/us, s 1.883, Gamma 0.675 (rho Gamma const)"},
 
       // ---- detonation products (JWL) -------------------------------------------------------
       // B. M. Dobratz and P. C. Crawford, "LLNL Explosives Handbook: Properties of Chemical

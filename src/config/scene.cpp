@@ -172,10 +172,10 @@ void read_strength(const DeckNode& n, MaterialSpec& spec) {
 // materials[].burn: {detonation_speed: D, cj_pressure: p_cj (JWL materials default to their
 // D and p_cj), detonators: [{type: point, at: [x, y, z]} | {type: line, from: [..], to: [..]} |
 // {type: plane, at: [..], normal: [..]}, each with an optional firing time], ramp_cells: 2,
-// programmed: true, volume_burn: false}.
+// programmed: true, volume_burn: false, unreacted: <library name of the unreacted solid>}.
 void read_burn(const DeckNode& n, MaterialSpec& spec) {
-  n.expect_keys(
-      {"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed", "volume_burn"});
+  n.expect_keys({"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed",
+                 "volume_burn", "unreacted"});
   BurnSpec& b = spec.burn;
   b.on = true;
   const bool jwl = spec.eos == "jwl";
@@ -197,6 +197,25 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
   // the CJ state must be a compression: 1 - p_cj / (rho0 D^2) in (0, 1)
   if (!(b.cj_pressure < spec.rho0 * b.detonation_speed * b.detonation_speed))
     n.fail("cj_pressure must be below rho0 D^2 (the CJ state is a compression)");
+  if (n.has("unreacted")) {
+    // the unreacted solid: a Mie-Grueneisen library entry (zero pressure at its rho0 and e = 0),
+    // its energy measured from the products' e0 = E0 / rho0
+    const DeckNode u = n.child("unreacted");
+    const std::string lib = n.get_string("unreacted");
+    const materials::MaterialData* data = materials::find_material(lib);
+    if (!data)
+      u.fail("no material '" + lib + "' in the library; did you mean '" +
+             nearest(lib, materials::material_names()) + "'?");
+    if (data->eos != "mie_gruneisen")
+      u.fail("'" + lib + "' has EOS " + data->eos +
+             "; the unreacted explosive needs a mie_gruneisen (solid) entry");
+    if (spec.eos != "jwl" || !spec.params.count("E0"))
+      u.fail(
+          "an unreacted EOS needs JWL products with E0 (it sets the unreacted energy origin "
+          "e0 = E0 / rho0)");
+    b.unreacted = lib;
+    b.unreacted_e0 = spec.params.at("E0") / spec.rho0;
+  }
   if (b.programmed) {
     const DeckNode list = n.child("detonators");
     if (!list.is_sequence() || list.size() == 0)

@@ -31,6 +31,11 @@ struct BurnSpec {
   double ramp_cells = 2;
   bool programmed = true, volume_burn = false;
   std::vector<DetonatorSpec> detonators;
+  // The unreacted solid's EOS (library entry; "" for none: p = F P_products). With one the
+  // explosive's pressure is (1 - F) P_unreacted(rho, e - e0) + F P_products(rho, e),
+  // e0 = E0 / rho0 of the JWL products (kernels/burn/burn.hpp he_pressure_mixed).
+  std::string unreacted;
+  double unreacted_e0 = 0;  // cm^2/us^2
 };
 
 struct MaterialSpec {

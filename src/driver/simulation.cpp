@@ -259,6 +259,12 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
   b.ramp_cells = Real(bs.ramp_cells);
   b.programmed = bs.programmed;
   b.volume_burn = bs.volume_burn;
+  if (!bs.unreacted.empty()) {
+    // the deck reader checked the entry (a mie_gruneisen library material)
+    b.mixed = true;
+    b.unreacted = materials::make_eos(*materials::find_material(bs.unreacted));
+    b.e0 = Real(bs.unreacted_e0);
+  }
   for (const DetonatorSpec& d : bs.detonators) {
     burn::Detonator det;
     det.kind = d.type == "point"  ? burn::Detonator::Kind::Point
@@ -365,8 +371,12 @@ std::vector<std::string> Simulation::modules() const {
          << (mat.burn.volume_burn ? "CJ volume" : "") << " (" << mat.name
          << ", D=" << mat.burn.detonation_speed << " cm/us, p_cj=" << mat.burn.cj_pressure
          << " Mbar, " << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
-         << " cells; p = F P_products; Huygens lighting times; fields burn_fraction, "
-            "lighting_time)";
+         << " cells; "
+         << (mat.burn.unreacted.empty()
+                 ? std::string("p = F P_products")
+                 : "p = (1-F) P_unreacted(rho, e-e0) + F P_products, unreacted '" +
+                       mat.burn.unreacted + "'")
+         << "; Huygens lighting times; fields burn_fraction, lighting_time)";
       m.push_back(os.str());
     }
   }
