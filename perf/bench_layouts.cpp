@@ -13,13 +13,14 @@
 // density at one pressure, moving at a uniform speed along x: every cycle remaps material
 // across the interfaces.
 //
-// Timing protocol (the machine may be shared and noisy): both layouts of a configuration are
-// set up side by side and run `warmup` untimed cycles each; then `repeats` blocks of `cycles`
-// timed cycles alternate between them (dense first in even blocks, compact first in odd ones),
-// and each layout reports the median over its blocks, with the spread (max / min). The share of
-// the CPUs that other processes took meanwhile is measured from /proc/stat and reported. A
-// separate block afterwards times every Kokkos kernel with a fence on each side (the breakdown;
-// its fences are never part of the plain timing).
+// Timing protocol (the machine may be shared and noisy): both layouts of a configuration, and a
+// single-material reference (the same mesh and flow with one material: what the issue's
+// "compact at most 1.5x the single-material cycle" compares against), are set up side by side
+// and run `warmup` untimed cycles each; then `repeats` blocks of `cycles` timed cycles rotate
+// between the three (each first in turn), and each reports the median over its blocks, with the
+// spread (max / min). The share of the CPUs that other processes took meanwhile is measured from
+// /proc/stat and reported. A separate block afterwards times every Kokkos kernel with a fence on
+// each side (the breakdown; its fences are never part of the plain timing).
 //   bench_layouts [--materials 2,4,8,16] [--widths 100,20,5,2] [--cells 200,16,16]
 //                 [--cycles 4] [--repeats 5] [--warmup 3] [--strength 0]
 //                 [--json perf/results/layouts.json]
@@ -216,7 +217,8 @@ int main(int argc, char** argv) {
       js << ",\n  \"cells\": [" << cells[0] << ", " << cells[1] << ", " << cells[2]
          << "],\n  \"protocol\": {\"warmup_cycles\": " << warmup
          << ", \"cycles_per_block\": " << cycles << ", \"blocks\": " << repeats
-         << ", \"statistic\": \"median over blocks\", \"order\": \"dense and compact alternate "
+         << ", \"statistic\": \"median over blocks\", \"order\": \"dense, compact, single material "
+            "rotate "
             "block by block\", \"breakdown\": \""
          << (breakdown ? "separate block, Kokkos::fence before and after every kernel" : "off")
          << "\"},\n  \"materials_with_strength\": " << strength << ",\n  \"note\": \"" << note
@@ -225,13 +227,17 @@ int main(int argc, char** argv) {
       const char* layouts[2] = {"dense", "compact"};
       for (int nmat : materials)
         for (int width : widths) {
-          LayoutRun run[2];
-          for (int l = 0; l < 2; ++l) {
+          // dense, compact, and the single-material reference: the same mesh, flow and step
+          // count with one material (every stripe gas0; the single-material cycle, no material
+          // state), so "compact / single" is what the materials cost
+          LayoutRun run[3];
+          for (int l = 0; l < 3; ++l) {
             // the allocations this layout's run makes and keeps through set-up and warm-up
             perf::AllocationTracker mem;
-            const Scene scene = read_scene(
-                Deck::parse(stripes_deck(nmat, width, cells, layouts[l], std::min(strength, nmat)),
-                            "layouts.yaml"));
+            const Scene scene = read_scene(Deck::parse(
+                l < 2 ? stripes_deck(nmat, width, cells, layouts[l], std::min(strength, nmat))
+                      : stripes_deck(1, width, cells, "compact", 0),
+                "layouts.yaml"));
             RunSettings settings;
             settings.quiet = true;
             run[l].sim = std::make_unique<Simulation>(scene, MPI_COMM_WORLD, settings);
@@ -248,13 +254,14 @@ int main(int argc, char** argv) {
             run[l].alloc_halo = b[2] / ncells;
           }
           const CpuSample c0 = cpu_sample();
-          for (int b = 0; b < repeats; ++b)
-            for (int o = 0; o < 2; ++o) run[b % 2 ? 1 - o : o].time_block(cycles);
+          for (int b = 0; b < repeats; ++b)  // the order rotates block by block
+            for (int o = 0; o < 3; ++o) run[(b + o) % 3].time_block(cycles);
           const CpuSample c1 = cpu_sample();
           double others = others_share(c0, c1);
           MPI_Allreduce(MPI_IN_PLACE, &others, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
           if (breakdown)
-            for (LayoutRun& r : run) {
+            for (int l = 0; l < 2; ++l) {
+              LayoutRun& r = run[l];
               Kokkos::fence();
               MPI_Barrier(MPI_COMM_WORLD);
               const auto t0 = std::chrono::steady_clock::now();
@@ -267,7 +274,8 @@ int main(int argc, char** argv) {
               r.allocations = kt.allocations();
             }
           long mixed = 0;
-          for (LayoutRun& r : run) {
+          for (int l = 0; l < 2; ++l) {
+            LayoutRun& r = run[l];
             const mat::MaterialState* mm = r.sim->hydro().materials();
             const Mesh& mesh = r.sim->mesh();
             double b = mm->bytes();
@@ -279,13 +287,14 @@ int main(int argc, char** argv) {
           const double ncell = double(run[1].sim->mesh().global_cell_count());
           const double mixed_frac = double(mixed) / ncell;
           const double ratio = run[0].seconds() / run[1].seconds();
+          const double over_single = run[1].seconds() / run[2].seconds();
           char line[512];
           std::snprintf(line, sizeof line,
-                        "| %d | %g | %.2f | %.2f | %.2f | %.2f | %.2f, %.2f | %.0f | %.1f | %.1f "
-                        "| %.0f, %.0f | %.0f |\n",
+                        "| %d | %g | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f, %.2f | %.0f "
+                        "| %.1f | %.1f | %.0f, %.0f | %.0f |\n",
                         nmat, 100.0 / width, 100 * mixed_frac, run[0].seconds() * 1e3,
-                        run[1].seconds() * 1e3, ratio, run[0].spread(), run[1].spread(),
-                        run[0].alloc_state, run[1].alloc_state,
+                        run[1].seconds() * 1e3, ratio, run[2].seconds() * 1e3, over_single,
+                        run[0].spread(), run[1].spread(), run[0].alloc_state, run[1].alloc_state,
                         run[0].alloc_state / run[1].alloc_state, run[0].alloc_all, run[1].alloc_all,
                         100 * others);
           rows << line;
@@ -295,6 +304,8 @@ int main(int argc, char** argv) {
              << ", \"dense_seconds_per_cycle\": " << run[0].seconds()
              << ", \"compact_seconds_per_cycle\": " << run[1].seconds()
              << ", \"dense_over_compact_time\": " << ratio
+             << ", \"single_material_seconds_per_cycle\": " << run[2].seconds()
+             << ", \"compact_over_single_material_time\": " << over_single
              << ", \"dense_bytes_per_cell\": " << run[0].bytes
              << ", \"compact_bytes_per_cell\": " << run[1].bytes
              << ", \"dense_allocated_state_bytes_per_cell\": " << run[0].alloc_state
@@ -367,8 +378,9 @@ int main(int argc, char** argv) {
       if (rank == 0) {
         std::printf(
             "STREAM triad (same process): %.2f GB/s; %s, %d threads/rank, %d ranks; "
-            "mesh %dx%dx%d; %d warm-up cycles, then %d blocks of %d cycles per layout, dense and "
-            "compact alternating; median over blocks\n",
+            "mesh %dx%dx%d; %d warm-up cycles, then %d blocks of %d cycles per layout, dense, "
+            "compact and the single-material reference (the same flow, one material) in "
+            "rotating order; median over blocks\n",
             st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks, cells[0], cells[1],
             cells[2], warmup, repeats, cycles);
         if (!note.empty()) std::printf("%s\n", note.c_str());
@@ -382,9 +394,11 @@ int main(int argc, char** argv) {
             "material halo buffers, the material state).\n");
         std::printf(
             "\n| materials | mixed %% (design) | mixed %% (owned cells) | dense ms/cycle "
-            "| compact ms/cycle | dense/compact time | max/min over blocks (dense, compact) "
+            "| compact ms/cycle | dense/compact time | single-material ms/cycle | compact/single "
+            "time | max/min over blocks (dense, compact) "
             "| dense B/cell | compact B/cell | dense/compact memory | whole run B/cell (dense, "
             "compact) | CPU taken by others %% |\n|---|---|---|---|---|---|---|---|---|---|---|---|"
+            "---|---|"
             "\n%s",
             rows.str().c_str());
         if (breakdown) {

@@ -247,6 +247,22 @@ struct FaceFluxes {
     const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
     const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
     const int side = f > 0 ? 1 : 0;
+    if constexpr (std::is_same_v<Dev, mat::CompactDev>) {
+      // A pure donor (most faces): the branch below for one material, without its nmat-long
+      // arrays (store_face keeps nothing for a pure donor); the same operations, bit for bit.
+      const int m0 = dev.mat(di, dj, dk);
+      if (m0 >= 0) {
+        const bool smooth = mat::pure_of(dev, ui, uj, uk, m0) && mat::pure_of(dev, wi, wj, wk, m0);
+        Real Mm = 0, Em = 0;
+        donor_flux(f, pre(di, dj, dk), rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk),
+                   e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), smooth ? order : 1, Mm, Em);
+        mf(i, j, k) = Mm;
+        ef(i, j, k) = Em;
+        for (int c = 0; c < 2; ++c)
+          if (cmask[c]) cflux[c](i, j, k) = ((cmask[c] >> m0) & 1u) ? Real(0) + Mm : Real(0);
+        return;
+      }
+    }
     Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
     const int count = read_donor(dev, rho, e, di, dj, dk, a, r, en);
     Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];

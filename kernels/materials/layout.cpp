@@ -28,8 +28,11 @@ struct HaloSource {
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
   int ext[3], nl[3];
-  int mode[3][2];     // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow
-  Buffer recv[3][2];  // per sweep and side: the message received (ng layers, nmat x 3 per cell)
+  int mode[3][2];  // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow
+  // per sweep and side: the message received (ng layers): per cell a head of 3 values, then
+  // per cell a full record of nmat x (alpha, rho, e), read only where the head is not negative
+  // (a pure cell's head is -(id + 1), rho, e)
+  Buffer recv[3][2];
 
   // 0: low ghost slab of axis d, 1: high ghost slab, -1: owned along d.
   KOKKOS_INLINE_FUNCTION int side_of(int d, int x) const {
@@ -61,7 +64,7 @@ struct HaloSource {
           int loc[3] = {idx[0], idx[1], idx[2]}, n[3] = {ext[0], ext[1], ext[2]};
           loc[d] = s == 0 ? x : x - (ng + nl[d]);
           n[d] = ng;
-          const long o = (loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2])) * nmat * 3;
+          const long o = (loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2])) * 3;
           const Buffer& b = recv[d][s];
           const Real a0 = b(o);
           if (!(a0 < 0)) return false;
@@ -96,18 +99,19 @@ struct HaloSource {
         n[d] = ng;
         const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
         const Buffer& b = recv[d][s];
-        const Real a0 = b(cell * nmat * 3);
+        const Real a0 = b(cell * 3);
         if (a0 < 0) {  // a pure cell's short record (pack): -(id + 1), rho, e
           for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
           const int id = int(-a0) - 1;
           a[id] = 1;
-          r[id] = b(cell * nmat * 3 + 1);
-          en[id] = b(cell * nmat * 3 + 2);
+          r[id] = b(cell * 3 + 1);
+          en[id] = b(cell * 3 + 2);
           return 1;
         }
+        const long full = 3 * long(n[0]) * n[1] * n[2];  // the full records follow the heads
         int cnt = 0;
         for (int m = 0; m < nmat; ++m) {
-          const long o = (cell * nmat + m) * 3;
+          const long o = full + (cell * nmat + m) * 3;
           a[m] = b(o);
           r[m] = b(o + 1);
           en[m] = b(o + 2);
@@ -206,7 +210,7 @@ void MaterialState::exchange() {
   for (int d = 0; d < 3; ++d) {
     int n[3] = {ext[0], ext[1], ext[2]};
     n[d] = ng;
-    count[d] = long(n[0]) * n[1] * n[2] * nmat * 3;
+    count[d] = long(n[0]) * n[1] * n[2] * (3 + nmat * 3);  // heads, then full records
     offset[d] = total;
     total += count[d];
     largest = std::max(largest, count[d]);
@@ -242,7 +246,8 @@ void MaterialState::exchange() {
         hi[d] = first + ng;
         auto buf = send_[s];
         const int n0 = d == 0 ? ng : ext[0], n1 = d == 1 ? ng : ext[1];  // slab extents
-        const HaloSource<Dev> before = src;                              // done == d
+        const long full = 3 * long(n0) * n1 * (d == 2 ? ng : ext[2]);
+        const HaloSource<Dev> before = src;  // done == d
         Kokkos::parallel_for(
             "matter::pack", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
             KOKKOS_LAMBDA(int i, int j, int k) {
@@ -252,17 +257,18 @@ void MaterialState::exchange() {
               int id = 0;
               Real pr = 0, pe = 0;
               if (before.pure(i, j, k, id, pr, pe)) {
-                // a pure cell sends 3 values, not 3 x nmat: -(id + 1), rho, e (the rest of its
-                // record is left unwritten; content() reads the short record)
-                buf(cell * nmat * 3) = -Real(id + 1);
-                buf(cell * nmat * 3 + 1) = pr;
-                buf(cell * nmat * 3 + 2) = pe;
+                // a pure cell: its head only, -(id + 1), rho, e (its full record is left
+                // unwritten; content() reads the head)
+                buf(cell * 3) = -Real(id + 1);
+                buf(cell * 3 + 1) = pr;
+                buf(cell * 3 + 2) = pe;
                 return;
               }
+              buf(cell * 3) = 1;  // (not negative: read the full record)
               Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
               before.content(i, j, k, a, r, en);
               for (int m = 0; m < nmat; ++m) {
-                const long o = (cell * nmat + m) * 3;
+                const long o = full + (cell * nmat + m) * 3;
                 buf(o) = a[m];
                 buf(o + 1) = r[m];
                 buf(o + 2) = en[m];
