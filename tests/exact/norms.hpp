@@ -7,6 +7,7 @@
 #include "mader.hpp"
 #include "noh.hpp"
 #include "riemann.hpp"
+#include "sedov.hpp"
 
 namespace mp::exact {
 
@@ -82,22 +83,37 @@ inline double l1_density(const std::vector<double>& x, const std::vector<double>
   return err;
 }
 
-// L1 norm of the density error over a 3-D octant (n^3 cells of size h from the origin, x
-// fastest) against spherical Noh at time t: the integral of |rho - rho_exact| over the cells
-// whose centre lies within r_max of the origin (a box's outflow faces do not supply the exact
-// converging inflow; their error runs in with the gas, at speed u0, so by time t it has reached
-// no closer to the origin than the faces' nearest distance minus u0 t).
-inline double octant_l1_density(const std::vector<double>& rho, int n, double h, const Noh& noh,
-                                double t, double r_max) {
+// L1 norm of the error of a cell field over a 3-D octant (n^3 cells of size h from the origin,
+// x fastest) against a radial profile exact(r): the integral of |f - exact(r)| over the cells
+// whose centre lies within r_max of the origin.
+template <class Exact>
+double octant_l1(const std::vector<double>& f, int n, double h, const Exact& exact, double r_max) {
   double err = 0;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const double r =
             h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
-        if (r < r_max) err += std::abs(rho[i + n * (j + n * k)] - noh.density(r, t));
+        if (r < r_max) err += std::abs(f[i + n * (j + n * k)] - exact(r));
       }
   return err * h * h * h;
+}
+
+// The density's L1 over an octant against spherical Noh at time t, over r < r_max (a box's
+// outflow faces do not supply the exact converging inflow; their error runs in with the gas,
+// at speed u0, so by time t it has reached no closer to the origin than the faces' nearest
+// distance minus u0 t).
+inline double octant_l1_density(const std::vector<double>& rho, int n, double h, const Noh& noh,
+                                double t, double r_max) {
+  return octant_l1(
+      rho, n, h, [&](double r) { return noh.density(r, t); }, r_max);
+}
+
+// The density's L1 over a whole octant against the Sedov blast with its shock at radius R.
+inline double octant_l1_density(const std::vector<double>& rho, int n, double h, const Sedov& sd,
+                                double R) {
+  return octant_l1(
+      rho, n, h, [&](double r) { return sd.density(r, R); }, INFINITY);
 }
 
 // The shape error of a transported body: the L1 difference of its final and initial volume
