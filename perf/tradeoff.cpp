@@ -3,6 +3,7 @@
 // tests use, from the one shared module tests/exact/norms.hpp), the wall time of the run, cycles,
 // cell-cycles/s and the memory the run held (peak of its live Kokkos allocations).
 //   tradeoff [--quick] [--json FILE] [--md FILE] [--scenes sod,sod2,mader,sedov,...]
+// Exits 1 if any run fails or gives no error measure (the CTest test tradeoff_smoke).
 // Scenes and their measures:
 //   sod, sod2     L1(rho) against the exact Riemann solution (two gammas for sod2)
 //   mader         L1(p) against the exact Mader detonation
@@ -331,7 +332,15 @@ int sweep_main(int argc, char** argv) {
     }
     std::ofstream(json_path) << js.dump(1) << "\n";
   }
-  return 0;
+  // a run that failed its health check or gave no error measure fails the sweep (exit 1)
+  int failed = 0;
+  for (const Point& p : pts)
+    if (!p.ok || !std::isfinite(p.error)) {
+      std::fprintf(stderr, "tradeoff: %s %d cells %s: %s\n", p.scene.c_str(), p.cells,
+                   p.options.c_str(), p.ok ? "no error measure" : "run failed");
+      ++failed;
+    }
+  return failed ? 1 : 0;
 }
 
 }  // namespace
