@@ -36,6 +36,9 @@ class AllocationTracker {
     for (const auto& kv : live_) b += double(kv.second.size);
     return b;
   }
+  // The largest live_bytes() seen since construction (the high-water mark of the run's Kokkos
+  // allocations: fields, scratch, halo buffers, host mirrors made while the tracker lives).
+  double peak_bytes() const { return peak_; }
   template <class... P>
   double live_bytes_with(const P&... prefixes) const {
     double b = 0;
@@ -59,12 +62,20 @@ class AllocationTracker {
   }
   static void allocate(Kokkos::Profiling::SpaceHandle, const char* label, const void* ptr,
                        uint64_t size) {
-    active()->live_[ptr] = {label, size};
+    AllocationTracker& t = *active();
+    t.live_[ptr] = {label, size};
+    t.current_ += double(size);
+    if (t.current_ > t.peak_) t.peak_ = t.current_;
   }
   static void deallocate(Kokkos::Profiling::SpaceHandle, const char*, const void* ptr, uint64_t) {
-    active()->live_.erase(ptr);
+    AllocationTracker& t = *active();
+    const auto it = t.live_.find(ptr);
+    if (it == t.live_.end()) return;  // made before the tracker
+    t.current_ -= double(it->second.size);
+    t.live_.erase(it);
   }
   std::map<const void*, Alloc> live_;
+  double current_ = 0, peak_ = 0;
 };
 
 }  // namespace mp::perf

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Pareto plots of the speed/accuracy sweep (perf/tradeoff): error against wall time, one panel
-per scene, one marker per option set, the Pareto front of each input file drawn as a line.
+per scene (three to a row), one marker per option set, the Pareto front of each input file drawn
+as a line.
 
     /usr/bin/python3 perf/plot_tradeoff.py perf/results/tradeoff_double.json \
         [perf/results/tradeoff_float.json] -o perf/results/tradeoff.png
@@ -35,9 +36,13 @@ def main():
         for p in d["points"]:
             if p["scene"] not in scenes:
                 scenes.append(p["scene"])
-    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 4), squeeze=False)
+    ncols = min(3, len(scenes))
+    nrows = (len(scenes) + ncols - 1) // ncols
+    fig, axes = plt.subplots(nrows, ncols, figsize=(4.6 * ncols, 4 * nrows), squeeze=False)
+    for ax in axes.flat[len(scenes):]:
+        ax.set_visible(False)
     markers = "os^vDP*X"
-    for ax, scene in zip(axes[0], scenes):
+    for ax, scene in zip(axes.flat, scenes):
         for r, d in enumerate(runs):
             pts = [p for p in d["points"] if p["scene"] == scene and p["ok"] and p["error"]]
             opts = []
@@ -46,7 +51,9 @@ def main():
                     opts.append(p["options"])
             for k, o in enumerate(opts):
                 sel = [p for p in pts if p["options"] == o]
-                short = " ".join(s.split("=")[1] for s in o.split())
+                # the values, but "ke_fix=false" for a switch (a bare "false" says nothing)
+                short = " ".join(s.split(".")[-1] if s.split("=")[1] in ("true", "false")
+                                 else s.split("=")[1] for s in o.split())
                 ax.loglog([p["wall_s"] for p in sel], [p["error"] for p in sel],
                           markers[k % len(markers)], color=f"C{k}", mfc="none" if r else None,
                           label=f"{short} ({d['real']})")

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "exact/ep_piston.hpp"
+#include "exact/norms.hpp"
 #include "strength/module.hpp"
 #include "support.hpp"
 
@@ -48,11 +49,9 @@ Line line_x(const test::Ran& r) {
 
 // First node from the wall where the velocity falls below `level` (moving away from the wall
 // means more negative here), linearly interpolated.
+// (tests/exact/norms.hpp, shared with the speed/accuracy harness perf/tradeoff.cpp)
 double front(const Line& l, double level) {
-  for (std::size_t i = 1; i < l.u.size(); ++i)
-    if (l.u[i] < level && l.u[i - 1] >= level)
-      return (i - 1 + (level - l.u[i - 1]) / (l.u[i] - l.u[i - 1])) * l.dx;
-  return NAN;
+  return exact::falling_front(l.u, l.dx, level);
 }
 
 // Speed of the elastic wave relative to the material, bar moving at -v0 onto the wall, and the

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "mader.hpp"
+#include "noh.hpp"
 #include "riemann.hpp"
+#include "sedov.hpp"
 
 namespace mp::exact {
 
@@ -59,6 +61,81 @@ inline double octant_shock_radius(const std::vector<double>& rho, int n, double 
       return r0 + (level - a0) / (a1 - a0) * (r1 - r0);
     }
   }
+  return NAN;
+}
+
+// L1 norm of the velocity error at the nodes x (spacing dx) against a Riemann problem with its
+// diaphragm at x0, at time t.
+inline double l1_velocity(const std::vector<double>& x, const std::vector<double>& u, double dx,
+                          const Riemann& rs, double x0, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i)
+    err += std::abs(u[i] - rs.sample((x[i] - x0) / t).u) * dx;
+  return err;
+}
+
+// L1 norm of the density error of a 1-D profile (cell centres x measured from the wall) against
+// planar Noh at time t.
+inline double l1_density(const std::vector<double>& x, const std::vector<double>& rho, double dx,
+                         const Noh& noh, double t) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) err += std::abs(rho[i] - noh.density(x[i], t)) * dx;
+  return err;
+}
+
+// L1 norm of the error of a cell field over a 3-D octant (n^3 cells of size h from the origin,
+// x fastest) against a radial profile exact(r): the integral of |f - exact(r)| over the cells
+// whose centre lies within r_max of the origin.
+template <class Exact>
+double octant_l1(const std::vector<double>& f, int n, double h, const Exact& exact, double r_max) {
+  double err = 0;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double r =
+            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+        if (r < r_max) err += std::abs(f[i + n * (j + n * k)] - exact(r));
+      }
+  return err * h * h * h;
+}
+
+// The density's L1 over an octant against spherical Noh at time t, over r < r_max (a box's
+// outflow faces do not supply the exact converging inflow; their error runs in with the gas,
+// at speed u0, so by time t it has reached no closer to the origin than the faces' nearest
+// distance minus u0 t).
+inline double octant_l1_density(const std::vector<double>& rho, int n, double h, const Noh& noh,
+                                double t, double r_max) {
+  return octant_l1(
+      rho, n, h, [&](double r) { return noh.density(r, t); }, r_max);
+}
+
+// The density's L1 over a whole octant against the Sedov blast with its shock at radius R.
+inline double octant_l1_density(const std::vector<double>& rho, int n, double h, const Sedov& sd,
+                                double R) {
+  return octant_l1(
+      rho, n, h, [&](double r) { return sd.density(r, R); }, INFINITY);
+}
+
+// The shape error of a transported body: the L1 difference of its final and initial volume
+// fractions (cells of equal volume `cell`) relative to its initial volume. Zero when the
+// transport returns the body to its start unchanged.
+inline double shape_error(const std::vector<double>& f0, const std::vector<double>& f1,
+                          double cell) {
+  double err = 0, v0 = 0;
+  for (std::size_t i = 0; i < f0.size(); ++i) {
+    err += std::abs(f1[i] - f0[i]) * cell;
+    v0 += f0[i] * cell;
+  }
+  return err / v0;
+}
+
+// The first node from x = 0 (nodes at i dx) where u falls below `level`, linearly interpolated,
+// or NaN: the front of a wave running away from the wall at x = 0 (moving away means more
+// negative u here).
+inline double falling_front(const std::vector<double>& u, double dx, double level) {
+  for (std::size_t i = 1; i < u.size(); ++i)
+    if (u[i] < level && u[i - 1] >= level)
+      return (double(i) - 1 + (level - u[i - 1]) / (u[i] - u[i - 1])) * dx;
   return NAN;
 }
 
