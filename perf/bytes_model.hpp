@@ -31,10 +31,10 @@ enum class Range {
   CellsAll,      // E^3: mesh.cells(All)
   CellsPadded1,  // (n + 2)^3: mesh.cells_padded(1)
   NodesOwned,    // (n + 1)^3: mesh.nodes(Owned)
-  NodeInterior,  // (E - 1)^3: the node masses of remap::volumes, nodes [1, E)
-  FacesAll,      // (E + 1) E^2: lagrange::volume_flux, the faces of every cell (one axis)
+  NodeInterior,  // (E - 1)^3: remap::node_mass, nodes [1, E)
+  FacesAll,      // (E + 1) E^2: lagrange::volume_flux_{x,y,z}, the faces of every cell
   FacesOwned,    // (n + 1) E^2: remap::cell_flux, owned faces along the sweep, all rows across
-  DualFaces,     // (n + 2)(n + 1)^2: the dual faces of remap::cell_update, both of every owned node
+  DualFaces,     // (n + 2)(n + 1)^2: remap::dual_face, both dual faces of every owned node
   HaloGhosts,    // every ghost point of the cycle's exchanges (see halo_points)
 };
 
@@ -51,10 +51,9 @@ struct KernelTraffic {
 inline const std::vector<KernelTraffic>& cycle_table() {
   static const std::vector<KernelTraffic> t = {
       {"timestep::cfl", Range::CellsOwned, 6, 0, 1, "c q rho u v w ->"},
-      // one launch for the three face sets: a row per set
-      {"lagrange::volume_flux", Range::FacesAll, 1, 1, 2, "u -> fx"},
-      {"lagrange::volume_flux", Range::FacesAll, 1, 1, 2, "v -> fy"},
-      {"lagrange::volume_flux", Range::FacesAll, 1, 1, 2, "w -> fz"},
+      {"lagrange::volume_flux_x", Range::FacesAll, 1, 1, 2, "u -> fx"},
+      {"lagrange::volume_flux_y", Range::FacesAll, 1, 1, 2, "v -> fy"},
+      {"lagrange::volume_flux_z", Range::FacesAll, 1, 1, 2, "w -> fz"},
       {"lagrange::predictor", Range::CellsAll, 7, 1, 1, "fx fy fz rho e p q -> p_half"},
       {"lagrange::acceleration", Range::NodesOwned, 6, 6, 1,
        "p_half q rho u v w -> u v w ub vb wb"},
@@ -66,15 +65,13 @@ inline const std::vector<KernelTraffic>& cycle_table() {
       {"eos::pressure_sound_speed", Range::CellsAll, 2, 2, 1, "rho e -> p c"},
       {"health::check", Range::CellsOwned, 3, 0, 1, "rho e p ->"},
       {"health::check", Range::NodesOwned, 3, 0, 1, "u v w ->"},
-      // the volumes, and the node masses from the same fluxes (pre recomputed) and rho
       {"remap::volumes", Range::CellsAll, 3, 2, 3, "fx fy fz -> pre post"},
-      {"remap::volumes", Range::NodeInterior, 1, 1, 3, "rho -> node_mass"},
+      {"remap::node_mass", Range::NodeInterior, 2, 1, 3, "rho pre -> node_mass"},
       {"remap::cell_flux", Range::FacesOwned, 4, 2, 3,
        "vol_flux pre rho e -> mass_flux energy_flux"},
-      // the cell update and, in the same launch, the dual faces (mass_flux read once)
       {"remap::cell_update", Range::CellsPadded1, 6, 2, 3,
        "rho e pre post mass_flux energy_flux -> rho e"},
-      {"remap::cell_update", Range::DualFaces, 4, 4, 3, "u v w node_mass -> F U V W"},
+      {"remap::dual_face", Range::DualFaces, 5, 4, 3, "mass_flux u v w node_mass -> F U V W"},
       {"remap::momentum", Range::NodesOwned, 8, 4, 3,
        "u v w node_mass F U V W -> ub vb wb ke_loss"},
       {"remap::ke_fix", Range::CellsOwned, 4, 1, 3, "ke_loss rho post e -> e"},

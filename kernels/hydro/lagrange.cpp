@@ -206,16 +206,22 @@ void Hydro::volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Rea
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const Real ax = dt * g.dx[1] * g.dx[2] * Real(0.25), ay = dt * g.dx[0] * g.dx[2] * Real(0.25),
              az = dt * g.dx[0] * g.dx[1] * Real(0.25);
-  // One launch for the three face sets: the node-extent box, each face set on its own range.
+  // One launch per face set (one launch for the three, with a branch per face set, took 1.96
+  // against 1.36 ms per cycle at 64^3, 2 threads).
   Kokkos::parallel_for(
-      "lagrange::volume_flux", Policy3({0, 0, 0}, {ex + 1, ey + 1, ez + 1}),
+      "lagrange::volume_flux_x", Policy3({0, 0, 0}, {ex + 1, ey, ez}),
       KOKKOS_LAMBDA(int i, int j, int k) {
-        if (j < ey && k < ez)
-          fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
-        if (i < ex && k < ez)
-          fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
-        if (i < ex && j < ey)
-          fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
+        fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
+      });
+  Kokkos::parallel_for(
+      "lagrange::volume_flux_y", Policy3({0, 0, 0}, {ex, ey + 1, ez}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
+      });
+  Kokkos::parallel_for(
+      "lagrange::volume_flux_z", Policy3({0, 0, 0}, {ex, ey, ez + 1}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
       });
 }
 
