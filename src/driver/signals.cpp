@@ -30,6 +30,13 @@ void install() {
   sa.sa_flags = SA_RESTART;
   sigaction(SIGTERM, &sa, nullptr);
   sigaction(SIGINT, &sa, nullptr);
+  // A closed stdout (a terminal gone, a pipe's reader gone, mpiexec no longer forwarding) must
+  // not kill the run before its checkpoint and summary: writes to it fail quietly instead.
+  struct sigaction ign;
+  std::memset(&ign, 0, sizeof ign);
+  ign.sa_handler = SIG_IGN;
+  sigemptyset(&ign.sa_mask);
+  sigaction(SIGPIPE, &ign, nullptr);
 }
 
 int requested() {
