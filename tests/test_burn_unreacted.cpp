@@ -118,7 +118,9 @@ TEST(BurnUnreacted, ShockInUnburntExplosiveFollowsTheCitedHugoniot) {
     EXPECT_LT(std::abs(err), 0.005);
     EXPECT_LT(std::abs(perr), 0.005);
     EXPECT_EQ(r.fmax, 0.0);  // nothing burnt
-    if (prev > 0) EXPECT_LT(std::abs(err), prev);
+    if (prev > 0) {
+      EXPECT_LT(std::abs(err), prev);
+    }
     prev = std::abs(err);
   }
 }
@@ -170,7 +172,9 @@ TEST(BurnUnreacted, PlanarDetonationStillReachesTheCjState) {
           (d * r.t - r.front) / r.dx, 100 * err, r.peak, r.peak / pcj);
       EXPECT_LT(std::abs(err), 0.01);
       EXPECT_NEAR(r.peak / pcj, 1.0, 0.05);
-      if (prev > 0) EXPECT_LT(std::abs(err), prev);
+      if (prev > 0) {
+        EXPECT_LT(std::abs(err), prev);
+      }
       prev = std::abs(err);
     }
   }
@@ -195,8 +199,21 @@ TEST(BurnUnreacted, LayoutsAgreeBitForBitWithTheUnreactedEos) {
       fields[l].push_back(test::gather(m, f.view, f.centering));
     const auto& m0 = r.result.start.material_mass;
     const auto& m1 = r.result.end.material_mass;
-    for (std::size_t q = 0; q < m0.size(); ++q)
-      EXPECT_LT(std::abs(m1[q] / m0[q] - 1), 1e-12) << "material " << q;
+    const double total = r.result.start.mass;
+    for (std::size_t q = 0; q < m0.size(); ++q) {
+      // Double: round-off of the material's own mass. Float: the build's min_fraction floor
+      // (4.8e-7 of a cell) hands slivers to a cell's largest material, so a material's mass
+      // moves by up to that much of a cell's mass per removal: 2e-6 of the scene's mass, the
+      // bound test_mm_modules sets for charge_3d (the float CI run of 2026-12-01 failed the
+      // double bound here: air -2.3e-3 of its own mass, the others ~2e-6 of theirs).
+      const double bound = test::by_precision(1e-12 * m0[q], 2e-6 * total);
+      std::printf(
+          "  %s, material %zu: mass change %.3e of its mass, %.3e of the scene's (bound "
+          "%.3e)\n",
+          l == 0 ? "dense" : "compact", q, m1[q] / m0[q] - 1, (m1[q] - m0[q]) / total,
+          bound / total);
+      EXPECT_LT(std::abs(m1[q] - m0[q]), bound) << "material " << q;
+    }
     if (l == 1) {
       const auto f = test::gather(m, r.sim->hydro().burn()->fraction(), Centering::Cell);
       std::printf("charge_3d with PBX 9404 + unreacted EOS: %ld cycles, largest F %.4f\n",
