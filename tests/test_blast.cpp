@@ -138,8 +138,7 @@ TEST(Noh, PostShockPlateau) {
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double rr =
-            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+        const double rr = exact::octant_radius(i, j, k, h);
         if (rr > 0.4 * rs && rr < rs - 3 * h) {
           const double a = rho[i + n * (j + n * k)];
           sum += a;

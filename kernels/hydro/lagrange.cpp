@@ -9,6 +9,26 @@
 
 namespace mp::hydro {
 
+namespace {
+
+// The single-material predictor over `box`: each cell's half-step density and energy from the
+// start-of-step volume fluxes, its half-step pressure from `pressure(rho, e, i, j, k)`.
+template <class Pressure>
+void predictor_kernel(const Policy3& box, const Field3& fx, const Field3& fy, const Field3& fz,
+                      const Field3& rho, const Field3& e, const Field3& p, const Field3& q,
+                      const Field3& ph, Real vol, const Pressure& pressure) {
+  Kokkos::parallel_for(
+      "lagrange::predictor", box, KOKKOS_LAMBDA(int i, int j, int k) {
+        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+        const Real mass = rho(i, j, k) * vol;
+        const Real v_half = vol + dv;
+        const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
+        ph(i, j, k) = pressure(mass / v_half, e_half, i, j, k);
+      });
+}
+
+}  // namespace
+
 Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
     : Hydro(mesh, halo, opt, std::vector<eos::Eos>{eos}) {}
 
@@ -242,23 +262,15 @@ Health Hydro::lagrange(Real dt) {
     const auto un = burn_->unreacted();
     const Real e0 = burn_->e0();
     auto f = burn_->fraction();
-    Kokkos::parallel_for(
-        "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-          const Real mass = rho(i, j, k) * vol;
-          const Real v_half = vol + dv;
-          const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
-          ph(i, j, k) = burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), mass / v_half, e_half);
+    predictor_kernel(
+        mesh_.cells(Region::All), fx, fy, fz, rho, e, p, q, ph, vol,
+        KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
+          return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         });
   } else {
-    Kokkos::parallel_for(
-        "lagrange::predictor", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-          const Real mass = rho(i, j, k) * vol;
-          const Real v_half = vol + dv;
-          const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
-          ph(i, j, k) = eos.pressure_cut(mass / v_half, e_half);
-        });
+    predictor_kernel(
+        mesh_.cells(Region::All), fx, fy, fz, rho, e, p, q, ph, vol,
+        KOKKOS_LAMBDA(Real r, Real en, int, int, int) { return eos.pressure_cut(r, en); });
   }
   if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
   // The half-step deviator and its nodal forces (kernels/strength/module.hpp).

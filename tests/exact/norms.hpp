@@ -11,31 +11,38 @@
 
 namespace mp::exact {
 
+// L1 norm of a 1-D profile f at the points x (spacing dx) against exact(x): sum |f - exact| dx.
+// The measures below are this with their exact solutions.
+template <class Exact>
+double l1_profile(const std::vector<double>& x, const std::vector<double>& f, double dx,
+                  const Exact& exact) {
+  double err = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) err += std::abs(f[i] - exact(x[i])) * dx;
+  return err;
+}
+
+// Distance from the origin of the centre of octant cell (i, j, k), cells of size h.
+inline double octant_radius(int i, int j, int k, double h) {
+  return h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+}
+
 // L1 norm of the density error of a 1-D profile (cell centres x, spacing dx) against a Riemann
 // problem with its diaphragm at x0, at time t.
 inline double l1_density(const std::vector<double>& x, const std::vector<double>& rho, double dx,
                          const Riemann& rs, double x0, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    err += std::abs(rho[i] - rs.sample((x[i] - x0) / t).rho) * dx;
-  return err;
+  return l1_profile(x, rho, dx, [&](double xi) { return rs.sample((xi - x0) / t).rho; });
 }
 
 // L1 norm of the pressure error of a 1-D profile against a Riemann problem (as l1_density).
 inline double l1_pressure(const std::vector<double>& x, const std::vector<double>& p, double dx,
                           const Riemann& rs, double x0, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    err += std::abs(p[i] - rs.sample((x[i] - x0) / t).p) * dx;
-  return err;
+  return l1_profile(x, p, dx, [&](double xi) { return rs.sample((xi - x0) / t).p; });
 }
 
 // L1 norm of the pressure error of a 1-D profile against the Mader solution at time t.
 inline double l1_pressure(const std::vector<double>& x, const std::vector<double>& p, double dx,
                           const Mader& m, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) err += std::abs(p[i] - m.sample(x[i], t).p) * dx;
-  return err;
+  return l1_profile(x, p, dx, [&](double xi) { return m.sample(xi, t).p; });
 }
 
 // The spherically averaged radius where a 3-D octant's density (n^3 cells of size h from the
@@ -45,8 +52,7 @@ inline double octant_shock_radius(const std::vector<double>& rho, int n, double 
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double r =
-            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+        const double r = octant_radius(i, j, k, h);
         const int b = static_cast<int>(r / (0.5 * h));
         if (b < 2 * n) {
           sum[b] += rho[i + n * (j + n * k)];
@@ -68,19 +74,14 @@ inline double octant_shock_radius(const std::vector<double>& rho, int n, double 
 // diaphragm at x0, at time t.
 inline double l1_velocity(const std::vector<double>& x, const std::vector<double>& u, double dx,
                           const Riemann& rs, double x0, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < x.size(); ++i)
-    err += std::abs(u[i] - rs.sample((x[i] - x0) / t).u) * dx;
-  return err;
+  return l1_profile(x, u, dx, [&](double xi) { return rs.sample((xi - x0) / t).u; });
 }
 
 // L1 norm of the density error of a 1-D profile (cell centres x measured from the wall) against
 // planar Noh at time t.
 inline double l1_density(const std::vector<double>& x, const std::vector<double>& rho, double dx,
                          const Noh& noh, double t) {
-  double err = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) err += std::abs(rho[i] - noh.density(x[i], t)) * dx;
-  return err;
+  return l1_profile(x, rho, dx, [&](double xi) { return noh.density(xi, t); });
 }
 
 // L1 norm of the error of a cell field over a 3-D octant (n^3 cells of size h from the origin,
@@ -92,8 +93,7 @@ double octant_l1(const std::vector<double>& f, int n, double h, const Exact& exa
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double r =
-            h * std::sqrt((i + 0.5) * (i + 0.5) + (j + 0.5) * (j + 0.5) + (k + 0.5) * (k + 0.5));
+        const double r = octant_radius(i, j, k, h);
         if (r < r_max) err += std::abs(f[i + n * (j + n * k)] - exact(r));
       }
   return err * h * h * h;
