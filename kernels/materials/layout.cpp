@@ -24,15 +24,38 @@ struct HaloSource {
   // a ghost's content comes from owned cells (never changed here) and the messages, so ghosts
   // may be written where they are (the dense layout always does)
   static constexpr bool in_place = true;
+  static constexpr bool ghosts_only = true;  // (exchange() assigns after all three sweeps)
   Dev dev;
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
   int ext[3], nl[3];
   int mode[3][2];  // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow
-  // per sweep and side: the message received (ng layers): per cell a head of 3 values, then
-  // per cell a full record of nmat x (alpha, rho, e), read only where the head is not negative
-  // (a pure cell's head is -(id + 1), rho, e)
+  // per sweep and side: the message received (the ng layers next to the face): per cell a head
+  // of 3 values, then the records of the cells that are not pure, only of the materials present
+  // (alpha, rho, e each, in material order). A pure cell's head is -(id + 1), rho, e; any
+  // other's is (mask of the materials present, hi, lo), its records at hi * 2^20 + lo values
+  // after the heads (every one of these is an integer below 2^24, exact in float too).
   Buffer recv[3][2];
+  static constexpr long kSplit = 1L << 20;
+
+  // Slab cell of sweep d (the ng layers of one side along d; k fastest, as the fields): its
+  // index in the message; x is (i, j, k) with x[d] counted from the slab's first layer.
+  KOKKOS_INLINE_FUNCTION long slab_cell(int d, const int x[3]) const {
+    int n[3] = {ext[0], ext[1], ext[2]};
+    n[d] = ng;
+    return x[2] + long(n[2]) * (x[1] + long(n[1]) * x[0]);
+  }
+  KOKKOS_INLINE_FUNCTION long slab_cells(int d) const {
+    int n[3] = {ext[0], ext[1], ext[2]};
+    n[d] = ng;
+    return long(n[0]) * n[1] * n[2];
+  }
+  // The received slab cell of sweep d, side s holding (i, j, k) = idx.
+  KOKKOS_INLINE_FUNCTION long received_cell(int d, int s, const int idx[3]) const {
+    int loc[3] = {idx[0], idx[1], idx[2]};
+    loc[d] = s == 0 ? idx[d] : idx[d] - (ng + nl[d]);
+    return slab_cell(d, loc);
+  }
 
   // 0: low ghost slab of axis d, 1: high ghost slab, -1: owned along d.
   KOKKOS_INLINE_FUNCTION int side_of(int d, int x) const {
@@ -47,45 +70,34 @@ struct HaloSource {
     return false;
   }
   KOKKOS_INLINE_FUNCTION int read(int i, int j, int k, Real* a, Real* r, Real* en) const;
-  // MaterialState::assign's shortcut, and the pack's: true when the content is one material,
-  // found without the per-material arrays (a pure stored cell or a pure cell's short record
-  // in a message; the compact layout only).
+  // MaterialState::assign's shortcut (compact), and the pack's: true when the content is one
+  // material, found without the per-material arrays (a pure stored cell or a pure cell's head
+  // in a message).
   static constexpr bool has_pure = true;
   KOKKOS_INLINE_FUNCTION bool pure(int i, int j, int k, int& id, Real& r, Real& en) const {
-    if constexpr (!std::is_same_v<Dev, CompactDev>) {
-      return false;
-    } else {
-      int idx[3] = {i, j, k};
-      for (int d = done - 1; d >= 0; --d) {
-        const int x = idx[d];
-        const int s = side_of(d, x);
-        if (s < 0) continue;
-        if (mode[d][s] == 0) {
-          int loc[3] = {idx[0], idx[1], idx[2]}, n[3] = {ext[0], ext[1], ext[2]};
-          loc[d] = s == 0 ? x : x - (ng + nl[d]);
-          n[d] = ng;
-          const long o = (loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2])) * 3;
-          const Buffer& b = recv[d][s];
-          const Real a0 = b(o);
-          if (!(a0 < 0)) return false;
-          id = int(-a0) - 1;
-          r = b(o + 1);
-          en = b(o + 2);
-          return true;
-        }
-        if (mode[d][s] == 1)
-          idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;
-        else
-          idx[d] = s == 0 ? ng : ng + nl[d] - 1;
+    int idx[3] = {i, j, k};
+    for (int d = done - 1; d >= 0; --d) {
+      const int x = idx[d];
+      const int s = side_of(d, x);
+      if (s < 0) continue;
+      if (mode[d][s] == 0) {
+        const long o = received_cell(d, s, idx) * 3;
+        const Buffer& b = recv[d][s];
+        const Real a0 = b(o);
+        if (!(a0 < 0)) return false;
+        id = int(-a0) - 1;
+        r = b(o + 1);
+        en = b(o + 2);
+        return true;
       }
-      const int m = dev.mat(idx[0], idx[1], idx[2]);
-      if (m < 0) return false;
-      id = m;
-      r = rho(idx[0], idx[1], idx[2]);
-      en = e(idx[0], idx[1], idx[2]);
-      return true;
+      if (mode[d][s] == 1)
+        idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;
+      else
+        idx[d] = s == 0 ? ng : ng + nl[d] - 1;
     }
+    return stored_pure(idx[0], idx[1], idx[2], id, r, en);
   }
+  KOKKOS_INLINE_FUNCTION bool stored_pure(int i, int j, int k, int& id, Real& r, Real& en) const;
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     int idx[3] = {i, j, k};
     for (int d = done - 1; d >= 0; --d) {
@@ -93,29 +105,27 @@ struct HaloSource {
       const int s = side_of(d, x);
       if (s < 0) continue;  // sweep d left this cell alone
       if (mode[d][s] == 0) {
-        // slab cell index with the axis d running over the ng ghost layers
-        int loc[3] = {idx[0], idx[1], idx[2]}, n[3] = {ext[0], ext[1], ext[2]};
-        loc[d] = s == 0 ? x : x - (ng + nl[d]);
-        n[d] = ng;
-        const long cell = loc[0] + long(n[0]) * (loc[1] + long(n[1]) * loc[2]);
+        const long cell = received_cell(d, s, idx);
         const Buffer& b = recv[d][s];
         const Real a0 = b(cell * 3);
-        if (a0 < 0) {  // a pure cell's short record (pack): -(id + 1), rho, e
-          for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+        for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+        if (a0 < 0) {  // a pure cell's head (pack): -(id + 1), rho, e
           const int id = int(-a0) - 1;
           a[id] = 1;
           r[id] = b(cell * 3 + 1);
           en[id] = b(cell * 3 + 2);
           return 1;
         }
-        const long full = 3 * long(n[0]) * n[1] * n[2];  // the full records follow the heads
+        const int mask = int(a0);
+        long o = 3 * slab_cells(d) + long(b(cell * 3 + 1)) * kSplit + long(b(cell * 3 + 2));
         int cnt = 0;
         for (int m = 0; m < nmat; ++m) {
-          const long o = full + (cell * nmat + m) * 3;
+          if (!((mask >> m) & 1)) continue;
           a[m] = b(o);
           r[m] = b(o + 1);
           en[m] = b(o + 2);
-          cnt += a[m] > 0 ? 1 : 0;
+          o += 3;
+          ++cnt;
         }
         return cnt;
       }
@@ -128,6 +138,35 @@ struct HaloSource {
     return read(idx[0], idx[1], idx[2], a, r, en);  // as stored before the exchange
   }
 };
+
+// A compact cell is pure when it says so; a dense one when one material fills it (alpha
+// exactly 1, every other exactly 0: then content() gives the same, bit for bit).
+template <>
+KOKKOS_INLINE_FUNCTION bool HaloSource<CompactDev>::stored_pure(int i, int j, int k, int& id,
+                                                                Real& r, Real& en) const {
+  const int m = dev.mat(i, j, k);
+  if (m < 0) return false;
+  id = m;
+  r = rho(i, j, k);
+  en = e(i, j, k);
+  return true;
+}
+template <>
+KOKKOS_INLINE_FUNCTION bool HaloSource<DenseDev>::stored_pure(int i, int j, int k, int& id, Real& r,
+                                                              Real& en) const {
+  int found = -1;
+  for (int m = 0; m < nmat; ++m) {
+    const Real a = dev.alpha(m, i, j, k);
+    if (a == 0) continue;
+    if (a != 1 || found >= 0) return false;
+    found = m;
+  }
+  if (found < 0) return false;
+  id = found;
+  r = dev.rho(found, i, j, k);
+  en = dev.e(found, i, j, k);
+  return true;
+}
 
 template <>
 KOKKOS_INLINE_FUNCTION int HaloSource<DenseDev>::read(int i, int j, int k, Real* a, Real* r,
@@ -204,26 +243,23 @@ void MaterialState::exchange() {
   const int ng = Mesh::ng;
   const int nmat = nmat_;
   const int ext[3] = {ex_, ey_, ez_};
-  // Message sizes per sweep; the receive buffers hold all three sweeps' messages (the final
-  // update reads them all), the send buffers one at a time. Kept between calls.
-  long count[3], offset[3], total = 0, largest = 0;
+  // Messages carry a head per cell and records only of the cells that are not pure, only of
+  // the materials present; the send buffer (one per side, reused by the sweeps) is sized for
+  // the largest slab with every material in every cell, the receive buffers (per sweep and
+  // side: the final update reads them all) for what arrived. Kept between calls.
+  long largest = 0;
   for (int d = 0; d < 3; ++d) {
     int n[3] = {ext[0], ext[1], ext[2]};
     n[d] = ng;
-    count[d] = long(n[0]) * n[1] * n[2] * (3 + nmat * 3);  // heads, then full records
-    offset[d] = total;
-    total += count[d];
-    largest = std::max(largest, count[d]);
+    largest = std::max(largest, long(n[0]) * n[1] * n[2] * (3 + nmat * 3));
   }
   for (int s = 0; s < 2; ++s) {
     bool neighbour = false;
     for (int d = 0; d < 3; ++d) neighbour = neighbour || !mesh_.physical_boundary(d, s);
-    if (!neighbour) continue;
-    if (long(send_[s].extent(0)) < largest)
+    if (neighbour && long(send_[s].extent(0)) < largest)
       send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), largest);
-    if (long(recv_[s].extent(0)) < total)
-      recv_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::recv"), total);
   }
+  if (pack_count_.extent(0) == 0) pack_count_ = decltype(pack_count_)("matter::pack_count", 6);
   auto run = [&](const auto& dev) {
     using Dev = std::decay_t<decltype(dev)>;
     HaloSource<Dev> src{dev, rho_, e_, ng, nmat, 0, {ext[0], ext[1], ext[2]}, {}, {}, {}};
@@ -231,6 +267,7 @@ void MaterialState::exchange() {
     for (int d = 0; d < 3; ++d) {
       const int nl = src.nl[d];
       bool any = false;
+      long sent[2] = {0, 0};
       for (int s = 0; s < 2; ++s) {
         if (mesh_.physical_boundary(d, s)) {
           src.mode[d][s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
@@ -238,46 +275,64 @@ void MaterialState::exchange() {
         }
         any = true;
         src.mode[d][s] = 0;
-        src.recv[d][s] = Kokkos::subview(recv_[s], std::make_pair(offset[d], offset[d] + count[d]));
-        // pack the ng owned layers next to face s, as they stand after the sweeps before d
+        // pack the ng owned layers next to face s, as they stand after the sweeps before d:
+        // heads, and the records of the cells that are not pure where an atomic counter puts
+        // them (their order varies from run to run; what each head points to does not)
         const int first = s == 0 ? ng : nl;
-        int lo[3] = {0, 0, 0}, hi[3] = {ext[0], ext[1], ext[2]};
-        lo[d] = first;
-        hi[d] = first + ng;
+        int n[3] = {ext[0], ext[1], ext[2]};
+        n[d] = ng;
+        const long ncell = long(n[0]) * n[1] * n[2];
         auto buf = send_[s];
-        const int n0 = d == 0 ? ng : ext[0], n1 = d == 1 ? ng : ext[1];  // slab extents
-        const long full = 3 * long(n0) * n1 * (d == 2 ? ng : ext[2]);
+        // the counter runs on from exchange to exchange (resetting it would cost a launch):
+        // this pack's records start where the last one on this sweep and side ended
+        auto counter = Kokkos::subview(pack_count_, 2 * d + s);
+        const long base = pack_total_[2 * d + s];
         const HaloSource<Dev> before = src;  // done == d
         Kokkos::parallel_for(
-            "matter::pack", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-            KOKKOS_LAMBDA(int i, int j, int k) {
-              int loc[3] = {i, j, k};
-              loc[d] -= first;
-              const long cell = loc[0] + long(n0) * (loc[1] + long(n1) * loc[2]);
+            "matter::pack", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
+            KOKKOS_LAMBDA(long c) {
+              int x[3] = {int(c / (long(n[1]) * n[2])), int((c / n[2]) % n[1]), int(c % n[2])};
+              x[d] += first;
               int id = 0;
               Real pr = 0, pe = 0;
-              if (before.pure(i, j, k, id, pr, pe)) {
-                // a pure cell: its head only, -(id + 1), rho, e (its full record is left
-                // unwritten; content() reads the head)
-                buf(cell * 3) = -Real(id + 1);
-                buf(cell * 3 + 1) = pr;
-                buf(cell * 3 + 2) = pe;
+              if (before.pure(x[0], x[1], x[2], id, pr, pe)) {
+                buf(c * 3) = -Real(id + 1);
+                buf(c * 3 + 1) = pr;
+                buf(c * 3 + 2) = pe;
                 return;
               }
-              buf(cell * 3) = 1;  // (not negative: read the full record)
               Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              before.content(i, j, k, a, r, en);
+              for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+              before.content(x[0], x[1], x[2], a, r, en);
+              int mask = 0, cnt = 0;
+              for (int m = 0; m < nmat; ++m)
+                if (a[m] > 0) {
+                  mask |= 1 << m;
+                  ++cnt;
+                }
+              const long at = Kokkos::atomic_fetch_add(&counter(), long(3 * cnt)) - base;
+              long o = 3 * ncell + at;
               for (int m = 0; m < nmat; ++m) {
-                const long o = full + (cell * nmat + m) * 3;
+                if (!((mask >> m) & 1)) continue;
                 buf(o) = a[m];
                 buf(o + 1) = r[m];
                 buf(o + 2) = en[m];
+                o += 3;
               }
+              buf(c * 3) = Real(mask);
+              buf(c * 3 + 1) = Real(at / HaloSource<Dev>::kSplit);
+              buf(c * 3 + 2) = Real(at % HaloSource<Dev>::kSplit);
             });
+        long total = 0;
+        Kokkos::deep_copy(total, counter);
+        const long records = total - base;
+        pack_total_[2 * d + s] = total;
+        sent[s] = 3 * ncell + records;
       }
       if (any) {
-        const Buffer recv[2] = {src.recv[d][0], src.recv[d][1]};
-        exchange_buffers(mesh_, d, send_, recv, count[d], 100);
+        long got[2];
+        exchange_sized(mesh_, d, send_, sent, recv_[d], got, 100, "matter::recv");
+        for (int s = 0; s < 2; ++s) src.recv[d][s] = recv_[d][s];
       }
       src.done = d + 1;
     }

@@ -367,6 +367,43 @@ double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buf
   return bytes;
 }
 
+double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long send_count[2],
+                      Buffer recv[2], long recv_count[2], int tag_base,
+                      const std::string& recv_label) {
+  Kokkos::fence();
+  typename Buffer::HostMirror hsend[2];
+  MPI_Request req[2];
+  int nreq = 0;
+  double bytes = 0;
+  for (int s = 0; s < 2; ++s) {
+    recv_count[s] = 0;
+    if (mesh.physical_boundary(d, s)) continue;
+    hsend[s] = Kokkos::create_mirror_view(send[s]);
+    Kokkos::deep_copy(hsend[s], send[s]);
+    // tags as exchange_buffers': by the sending side
+    MPI_CHECK(MPI_Isend(hsend[s].data(), int(send_count[s]), mpi_real(), mesh.neighbor(d, s),
+                        tag_base + 10 * d + s, mesh.comm(), &req[nreq++]));
+    bytes += double(send_count[s]) * sizeof(Real);
+  }
+  for (int s = 0; s < 2; ++s) {
+    if (mesh.physical_boundary(d, s)) continue;
+    const int src = mesh.neighbor(d, s), tag = tag_base + 10 * d + 1 - s;
+    MPI_Status st;
+    MPI_CHECK(MPI_Probe(src, tag, mesh.comm(), &st));
+    int n = 0;
+    MPI_CHECK(MPI_Get_count(&st, mpi_real(), &n));
+    if (long(recv[s].extent(0)) < n)
+      recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, recv_label),
+                       std::max(n + n / 4, 1));
+    auto h = Kokkos::create_mirror_view(recv[s]);
+    MPI_CHECK(MPI_Recv(h.data(), n, mpi_real(), src, tag, mesh.comm(), MPI_STATUS_IGNORE));
+    Kokkos::deep_copy(recv[s], h);
+    recv_count[s] = n;
+  }
+  MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
+  return bytes;
+}
+
 Halo::Halo(const Mesh& mesh) : mesh_(mesh) {}
 
 void Halo::exchange(const std::vector<HaloField>& fields) {
