@@ -426,8 +426,30 @@ TEST(FlowStress, LibraryNamesAndMissingSets) {
   const st::StrengthData* steel = st::find_strength("steel_4340");
   ASSERT_NE(steel, nullptr);
   EXPECT_THROW(st::make_flow_stress(*steel, st::kSteinbergGuinan), mp::InputError);
-  EXPECT_THROW(st::make_flow_stress(*steel, st::kJohnsonCook), mp::InputError);  // no cited G0
   EXPECT_NO_THROW(st::make_flow_stress(*st::find_strength("tungsten"), st::kSteinbergGuinan));
+}
+
+// 4340's Johnson-Cook set carries the cited shear modulus (ASM/MatWeb, 80 GPa = 0.80 Mbar) and
+// the flow stress built from it returns that modulus below T_melt and 0 above; an entry whose
+// G0 were 0 is still refused.
+TEST(FlowStress, Steel4340ShearModulus) {
+  const st::StrengthData* steel = st::find_strength("steel_4340");
+  ASSERT_NE(steel, nullptr);
+  EXPECT_EQ(steel->G0, Real(0.80));
+  EXPECT_EQ(steel->jc.G0, steel->G0);
+  const st::FlowStress jc = st::make_flow_stress(*steel, st::kJohnsonCook);
+  st::PointState x;
+  x.eps_p = 0.1;
+  x.eps_dot = 1e-2;
+  x.p = 0.01;
+  x.eta = 1.01;
+  x.T = 500;
+  EXPECT_EQ(jc.shear_modulus(x), Real(0.80));
+  x.T = 1800;  // above T_melt 1793 K
+  EXPECT_EQ(jc.shear_modulus(x), Real(0));
+  st::StrengthData no_g0 = *steel;
+  no_g0.G0 = no_g0.jc.G0 = 0;
+  EXPECT_THROW(st::make_flow_stress(no_g0, st::kJohnsonCook), mp::InputError);
 }
 
 // ---- exact elastic-plastic piston ----------------------------------------------------------

@@ -25,6 +25,9 @@
 //    UCRL-JC-134118 (LLNL, 2001), read in Uintah's JCPlastic6061T6Al.xml (Uintah's
 //    bibliography cites Lesuer01 for it). The JC paper itself could not be opened here; its
 //    melting and room temperatures were not read (the values below are Uintah's, noted).
+//  - The 4340 shear modulus: ASM International's MatWeb datasheet for AISI 4340 (normalized),
+//    80 GPa, which the sheet labels "typical for steel" (Steinberg's 4340 row, which would carry
+//    G0 and its derivatives, was not found in a readable transcription).
 #pragma once
 #include <string>
 #include <vector>
@@ -91,9 +94,13 @@ inline const std::vector<StrengthData>& strength_table() {
        "Uintah SCGMaterials/SCG_Aluminum6061-T6.xml; Johnson-Cook: Lesuer, Kay & LeBlanc "
        "UCRL-JC-134118 (2001), read in Uintah JCPlastic6061T6Al.xml"},
       {"steel_4340",
-       // No shear modulus for 4340 could be read in a cited source (Steinberg's 4340 strength
-       // row was not found in a readable transcription): G0 = 0, a scene must give one.
-       Real(0),
+       // ASM International / MatWeb datasheet "AISI 4340 Steel, normalized, 100 mm (4 in.)
+       // round" (asm.matweb.com, bassnum M434AE): shear modulus 80 GPa (11600 ksi), marked there
+       // "Typical for steel" (a generic steel value, not measured on 4340; the same sheet gives
+       // E 205 GPa, typical, and Poisson's ratio 0.29, calculated: E/(2(1+nu)) = 79.5 GPa).
+       // Steinberg's 4340 strength row (and with it G'_p, G'_T) was still not found in a readable
+       // transcription.
+       Real(0.80),
        // Steinberg UCRL-MA-106439, 4340 steel (Rc 38), cv 0.448e-5 Mbar cm^3/(g K) (FronTier
        // mg-eos.c transcription) = 448 J/(kg K).
        Real(448) * kJPerKgK, Real(300),
@@ -102,12 +109,12 @@ inline const std::vector<StrengthData>& strength_table() {
        // MaterialConst4340Steel.xml, JC's own value not read); T_room 298 K.
        true,
        JohnsonCook{Real(792e-5), Real(510e-5), Real(0.26), Real(0.014), Real(1.03), kPerSecond,
-                   Real(298), Real(1793), Real(0)},
+                   Real(298), Real(1793), Real(0.80)},
        false, SteinbergGuinan{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0},
-       "cv: Steinberg UCRL-MA-106439 (FronTier mg-eos.c transcription); Johnson-Cook: Johnson "
-       "& Cook, 7th Int. Symp. Ballistics (1983), read in Uintah "
-       "JohnsonCookPlastic4340Steel.xml, T_melt 1793 K (Uintah); no cited G0, no "
-       "Steinberg-Guinan set"},
+       "G0: ASM/MatWeb datasheet AISI 4340 normalized (M434AE), 80 GPa 'typical for steel'; cv: "
+       "Steinberg UCRL-MA-106439 (FronTier mg-eos.c transcription); Johnson-Cook: Johnson & "
+       "Cook, 7th Int. Symp. Ballistics (1983), read in Uintah JohnsonCookPlastic4340Steel.xml, "
+       "T_melt 1793 K (Uintah); no Steinberg-Guinan set"},
       {"tungsten",
        // Steinberg UCRL-MA-106439, tungsten: G0 160 GPa; cv 129 J/(kg K).
        Real(1.60), Real(129) * kJPerKgK, Real(300),
