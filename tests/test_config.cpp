@@ -291,6 +291,10 @@ TEST(Deck, MaterialsAndRegions) {
                {"deck.yaml:16:", "key 'numerics.relaxation_iterations'", "out of range"});
   expect_holds(error_of(deck({{16, "  relaxation_iterations: many"}})),
                {"deck.yaml:16:", "key 'numerics.relaxation_iterations'"});
+  expect_holds(error_of(deck({{16, "  solid_floor: 1.5"}})),
+               {"deck.yaml:16:", "key 'numerics.solid_floor'", "out of range"});
+  expect_holds(error_of(deck({{16, "  solid_floor: -0.1"}})),
+               {"deck.yaml:16:", "key 'numerics.solid_floor'", "out of range"});
   // the tension cutoff is a floor on tension: zero or below, a finite number
   expect_holds(
       error_of(deck({{21, "    gamma: 1.4\n    p_min: 1.0e-3"}})),

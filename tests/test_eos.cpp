@@ -12,6 +12,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "burn/burn.hpp"
 #include "core/error.hpp"
 #include "eos/eos.hpp"
 #include "hydro/relax.hpp"
@@ -590,5 +591,105 @@ TEST(Relaxation, StopsAtTheVolumeFloor) {
     }
     EXPECT_NEAR(total / cell, 1.0, roundoff(1e-15));
     EXPECT_NEAR((double(mass[0]) * e[0] + double(mass[1]) * e[1]) / energy0, 1.0, roundoff(1e-13));
+  }
+}
+
+// Relaxation with an explosive at its burn closure (the corrector's pc callable with burn:
+// p = F P_products, c^2 at frozen F, kernels/burn/burn.hpp): a part-burnt Composition B (F = 0.5,
+// products at the unreacted density and the detonation energy: F P = 0.059 Mbar) beside copper
+// stretched to 0.97 rho0 (-0.042 Mbar) ends at one pressure, F P = p_Cu (observed 0.0500 after
+// 4 updates), with volume and energy kept; unburnt explosive (F = 0: no pressure, c^2 = 0) is
+// left alone, as a material outside its EOS range is.
+TEST(Relaxation, PartlyBurntExplosiveAtItsBurnClosure) {
+  using mp::Real;
+  const Eos products = mp::materials::make_eos(*mp::materials::find_material("comp_b_products"));
+  const Eos copper = mp::materials::make_eos(*mp::materials::find_material("copper"));
+  for (double f : {0.5, 0.0}) {
+    const auto pc = [&](int s, Real r, Real en, Real& ps, Real& c2) {
+      if (s == 0) {
+        ps = mp::burn::he_pressure(products, Real(f), r, en);
+        c2 = mp::burn::he_sound_speed2(products, Real(f), r, en);
+      } else {
+        ps = copper.pressure(r, en);
+        c2 = copper.sound_speed2(r, en);
+      }
+    };
+    Real vol[2] = {Real(0.5), Real(0.5)};
+    const Real mass[2] = {Real(1.717 * 0.5), Real(0.97 * 8.93 * 0.5)};
+    Real e[2] = {Real(0.085 / 1.717), Real(0)};
+    Real p0[2], c2;
+    for (int s = 0; s < 2; ++s) pc(s, mass[s] / vol[s], e[s], p0[s], c2);
+    const double energy0 = double(mass[0]) * e[0] + double(mass[1]) * e[1];
+    Real p[2];
+    const auto r = mp::hydro::relax_pressures_with(2, pc, vol, mass, e, p, 200, Real(1e-10));
+    std::printf(
+        "relaxation, Comp B at F = %.1f | copper: p %.4e | %.4e -> %.6e | %.6e (%d "
+        "iterations), explosive fraction %.4f\n",
+        f, p0[0], p0[1], p[0], p[1], r.iterations, vol[0]);
+    EXPECT_NEAR(double(vol[0]) + vol[1], 1.0, roundoff(1e-15));
+    EXPECT_NEAR((double(mass[0]) * e[0] + double(mass[1]) * e[1]) / energy0, 1.0, roundoff(1e-13));
+    if (f == 0) {
+      EXPECT_EQ(p0[0], 0);
+      EXPECT_EQ(r.iterations, 0);
+      EXPECT_EQ(vol[0], Real(0.5));
+      continue;
+    }
+    EXPECT_GT(p0[0], 0.04);  // the explosive pushes, the copper pulls
+    EXPECT_LT(p0[1], 0);
+    Real q[2];
+    for (int s = 0; s < 2; ++s) pc(s, mass[s] / vol[s], e[s], q[s], c2);
+    const double stiff = double(copper.sound_speed2(mass[1] / vol[1], e[1])) * mass[1] / vol[1];
+    EXPECT_LE(std::abs(double(q[0]) - q[1]),
+              by_precision(1e-9 * std::abs(double(p0[0])), 8 * mp::test::kEps * stiff));
+    EXPECT_GT(vol[0], 0.5);  // the explosive expanded, the copper was pushed back
+    EXPECT_GT(q[0], p0[1]);
+    EXPECT_LT(q[0], p0[0]);
+  }
+}
+
+// The solid floor of a mixed cell (kernels/hydro/relax.hpp solid_floor): copper stretched to
+// 1 % of rho0 beside air is put back at 0.8 rho0, the air takes the volume it gives up, every
+// mass and energy and the cell volume are kept; water (also Mie-Grueneisen) above the floor
+// takes a share by its compressibility V / (rho c^2), far less than the air's; nothing moves
+// when no material is below the floor, or when none could take the volume.
+TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
+  using mp::Real;
+  const auto lib = [](const char* name) {
+    return mp::materials::make_eos(*mp::materials::find_material(name));
+  };
+  const Eos eos[3] = {lib("copper"), lib("air"), lib("water")};
+  const int id[3] = {0, 1, 2};
+  const double rho0_cu = 8.93;
+  {
+    Real vol[3] = {Real(0.04), Real(0.9), Real(0.06)};
+    const Real mass[3] = {Real(0.01 * rho0_cu * 0.04), Real(1.2e-3 * 0.9), Real(1.0 * 0.06)};
+    const Real e[3] = {Real(0.01), Real(2.0), Real(1e-4)};
+    const Real v0[3] = {vol[0], vol[1], vol[2]};
+    ASSERT_TRUE(mp::hydro::solid_floor(3, eos, id, vol, mass, e, Real(0.8)));
+    std::printf("solid floor: copper %.4e -> %.4e, air %.6f -> %.6f, water %.8f -> %.8f\n", v0[0],
+                vol[0], v0[1], vol[1], v0[2], vol[2]);
+    EXPECT_NEAR(mass[0] / vol[0] / (0.8 * rho0_cu), 1.0, roundoff(1e-14));
+    EXPECT_NEAR(double(vol[0]) + vol[1] + vol[2], 1.0, roundoff(1e-15));
+    const double given = v0[0] - vol[0];
+    EXPECT_GT(vol[1] - v0[1], 0.99 * given);  // the air takes nearly all of it
+    EXPECT_GE(vol[2], v0[2]);
+    EXPECT_LT(vol[2] - v0[2], 1e-2 * given);  // observed 0.33 % (V / rho c^2: 2.2 against 670)
+  }
+  {  // nothing below the floor: nothing moves
+    Real vol[2] = {Real(0.5), Real(0.5)};
+    const Real mass[2] = {Real(0.9 * rho0_cu * 0.5), Real(1.2e-3 * 0.5)};
+    const Real e[2] = {Real(0), Real(2.0)};
+    EXPECT_FALSE(mp::hydro::solid_floor(2, eos, id, vol, mass, e, Real(0.8)));
+    EXPECT_EQ(vol[0], Real(0.5));
+    EXPECT_EQ(vol[1], Real(0.5));
+  }
+  {  // copper and water both below the floor: no material can take the volume
+    const int idw[2] = {0, 2};
+    Real vol[2] = {Real(0.5), Real(0.5)};
+    const Real mass[2] = {Real(0.5 * rho0_cu * 0.5), Real(0.5 * 1.0 * 0.5)};
+    const Real e[2] = {Real(0), Real(0)};
+    EXPECT_FALSE(mp::hydro::solid_floor(2, eos, idw, vol, mass, e, Real(0.8)));
+    EXPECT_EQ(vol[0], Real(0.5));
+    EXPECT_EQ(vol[1], Real(0.5));
   }
 }

@@ -80,6 +80,11 @@ struct Options {
   // Newton updates per cycle, stopping once the pressures agree to relax_tol (relative).
   bool relax = false;
   int relax_iterations = 20;
+  // Solid floor (docs/numerics.md, "Stretched solids in mixed cells"): a Mie-Grueneisen
+  // material of a mixed cell below solid_floor x rho0 after the corrector is put back at that
+  // density, its volume going to the cell's other materials without work (free expansion into
+  // the void a failing solid opens); 0 leaves equal strain alone.
+  Real solid_floor = 0;
   // (1e-10, or 64 ulps where Real cannot hold that: 7.6e-6 in float)
   Real relax_tol = Real(std::max(1e-10, 64.0 * double(std::numeric_limits<Real>::epsilon())));
   // Strength of a single-material scene's material (kernels/strength/module.hpp): the

@@ -95,7 +95,6 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     } else {
       if (opt.burn.material < 0 || opt.burn.material >= mats_.n)
         throw RunError("burn: the explosive's material id is not set");
-      if (opt.relax) throw RunError("burn with pressure relaxation is not supported");
       burn_ = std::make_unique<burn::Burn>(mesh, opt.burn, mm_.get());
       carrier_mask_[1] = 1u << opt.burn.material;
     }

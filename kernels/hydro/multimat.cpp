@@ -463,6 +463,8 @@ void Hydro::mm_corrector(Real vol) {
   const int iters = opt_.relax_iterations;
   const Real tol = opt_.relax_tol;
   const Real fmin = opt_.min_fraction;
+  const Real sfloor = opt_.solid_floor;
+  const BurnHook bh = burn_hook(burn_.get());
   auto q = s_.q, rho = s_.rho, e = s_.e;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   mm_->for_cells(
@@ -490,7 +492,28 @@ void Hydro::mm_corrector(Real vol) {
           ++n;
         }
         if (relax && n > 1) {
-          relax_pressures(n, mats.eos, id, mv, mm, me, pm, iters, tol, fmin * vnew);
+          // each material at its own EOS; an explosive at its burn closure, frozen F (its
+          // pressure as the EOS kernel forms it, without the tension cutoffs, as for the others)
+          const auto pc = [&](int s, Real r, Real en, Real& ps, Real& c2) {
+            const eos::Eos& eq = mats.eos[id[s]];
+            if (id[s] != bh.material) {
+              ps = eq.pressure(r, en);
+              c2 = eq.sound_speed2(r, en);
+            } else if (bh.mixed) {
+              const Real f = bh.f(i, j, k);
+              ps = burn::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+              c2 = burn::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+            } else {
+              const Real f = bh.f(i, j, k);
+              ps = burn::he_pressure(eq, f, r, en);
+              c2 = burn::he_sound_speed2(eq, f, r, en);
+            }
+          };
+          relax_pressures_with(n, pc, mv, mm, me, pm, iters, tol, fmin * vnew);
+        }
+        bool moved = relax && n > 1;
+        if (sfloor > 0 && n > 1) moved = solid_floor(n, mats.eos, id, mv, mm, me, sfloor) || moved;
+        if (moved) {
           Real vsum = 0;
           for (int s = 0; s < n; ++s) vsum += mv[s];
           for (int s = 0; s < n; ++s) {

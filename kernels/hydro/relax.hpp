@@ -47,9 +47,14 @@ struct RelaxResult {
 // floor times the cell volume: below it the other fractions round to 1 in float, see
 // hydro::kMinFractionFloor); a material at the floor that still wants to shrink stops the
 // relaxation of its cell, and the next remap removes it.
-KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, const int* id,
-                                                   Real* vol, const Real* mass, Real* e, Real* p,
-                                                   int max_iter, Real tol, Real v_min = 0) {
+//
+// relax_pressures_with takes the materials' closure as a callable, pc(s, rho, e, p, c2) setting
+// material s's pressure and c^2 at (rho, e) (an explosive's p = F P_products with its frozen-F
+// c^2, burn.hpp); relax_pressures is it with each material's own EOS.
+template <class PC>
+KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures_with(int n, const PC& pc, Real* vol,
+                                                        const Real* mass, Real* e, Real* p,
+                                                        int max_iter, Real tol, Real v_min = 0) {
   constexpr int kMax = 16;
   Real wgt[kMax], dv[kMax];
   Real total = 0;
@@ -60,8 +65,8 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
     int active = 0;
     for (int s = 0; s < n; ++s) {
       const Real rho = mass[s] / vol[s];
-      p[s] = eos[id[s]].pressure(rho, e[s]);
-      const Real c2 = eos[id[s]].sound_speed2(rho, e[s]);
+      Real c2 = 0;
+      pc(s, rho, e[s], p[s], c2);
       // volume change per unit pressure change; 0: out of range, left alone
       wgt[s] = c2 > 0 ? vol[s] / (rho * c2) : Real(0);
       if (!(wgt[s] > 0)) continue;
@@ -118,6 +123,64 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
     r.iterations = it + 1;
   }
   return r;
+}
+
+KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, const int* id,
+                                                   Real* vol, const Real* mass, Real* e, Real* p,
+                                                   int max_iter, Real tol, Real v_min = 0) {
+  const auto own = [=](int s, Real rho, Real en, Real& ps, Real& c2) {
+    ps = eos[id[s]].pressure(rho, en);
+    c2 = eos[id[s]].sound_speed2(rho, en);
+  };
+  return relax_pressures_with(n, own, vol, mass, e, p, max_iter, tol, v_min);
+}
+
+// Solid floor of a mixed cell (docs/numerics.md, "Stretched solids in mixed cells"). Equal
+// strain stretches every material of an expanding cell alike, so a sliver of metal beside a
+// gas follows the gas toward vacuum densities, where the Mie-Grueneisen expansion branch
+// (valid for rho/rho0 >~ 0.8) keeps a finite pressure and an unbounded c^2 (the perforator's
+// step fell to 0.001 us at copper stretched below 1 % of rho0). A real solid fails in tension
+// and opens void instead. Here a Mie-Grueneisen material whose volume exceeds
+// mass / (rho_floor rho0) is put back at rho_floor x rho0; the volume it gives up goes to the
+// cell's other materials in proportion to V / (rho c^2) (the soft ones take it, as in the
+// relaxation) with no work done (free expansion into the opened void), so every mass, the cell
+// volume and every material's energy are kept exactly. Nothing moves when no other material can
+// take the volume. Returns true when volumes changed.
+KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* id, Real* vol,
+                                        const Real* mass, const Real* e, Real rho_floor) {
+  constexpr int kMax = 16;
+  Real wgt[kMax], keep[kMax];
+  Real give = 0, den = 0, total = 0;
+  for (int s = 0; s < n; ++s) {
+    total += vol[s];
+    keep[s] = vol[s];
+    const eos::Eos& q = eos[id[s]];
+    if (q.kind == eos::kMieGruneisen) {
+      const Real vmax = mass[s] / (rho_floor * q.params[0]);  // params[0]: rho0
+      if (vol[s] > vmax) {
+        give += vol[s] - vmax;
+        vol[s] = vmax;
+        wgt[s] = 0;  // put back; takes nothing
+        continue;
+      }
+    }
+    const Real rho = mass[s] / vol[s];
+    const Real c2 = q.sound_speed2(rho, e[s]);
+    wgt[s] = c2 > 0 ? vol[s] / (rho * c2) : Real(0);
+    den += wgt[s];
+  }
+  if (!(give > 0)) return false;
+  if (!(den > 0)) {  // no material can take the volume: nothing moves
+    for (int s = 0; s < n; ++s) vol[s] = keep[s];
+    return false;
+  }
+  Real sum = 0;
+  for (int s = 0; s < n; ++s) {
+    if (wgt[s] > 0) vol[s] += give * (wgt[s] / den);
+    sum += vol[s];
+  }
+  for (int s = 0; s < n; ++s) vol[s] *= total / sum;  // the cell volume to the last bit
+  return true;
 }
 
 }  // namespace mp::hydro

@@ -525,8 +525,9 @@ Scene read_scene(const Deck& deck) {
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
     n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples", "layout", "interface",
-                   "min_fraction", "closure", "relaxation_iterations"});
+                   "min_fraction", "closure", "relaxation_iterations", "solid_floor"});
     s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
+    s.numerics.solid_floor = n.get_real("solid_floor", 0, 0.99, s.numerics.solid_floor);
     s.numerics.relaxation_iterations = static_cast<int>(
         n.get_int("relaxation_iterations", 1, 1000, s.numerics.relaxation_iterations));
     s.numerics.layout = n.get_enum("layout", {"compact", "dense"}, s.numerics.layout);
@@ -552,14 +553,6 @@ Scene read_scene(const Deck& deck) {
         .child("remap")
         .fail("the unsplit remap runs single-material scenes only; use 'split' with " +
               std::to_string(s.materials.size()) + " materials");
-  if (s.materials.size() > 1 && s.numerics.closure == "relaxation")
-    for (const MaterialSpec& m : s.materials)
-      if (m.burn.on)
-        root.child("numerics")
-            .child("closure")
-            .fail(
-                "pressure relaxation does not know an explosive's burn fraction; use "
-                "'equal_strain' in a scene with burn");
 
   s.output.basename = s.name;
   if (root.has("output")) {

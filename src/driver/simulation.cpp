@@ -309,6 +309,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.min_fraction = Real(hydro::effective_min_fraction(scene_.numerics.min_fraction));
   opt.relax = scene_.numerics.closure == "relaxation";
   opt.relax_iterations = scene_.numerics.relaxation_iterations;
+  opt.solid_floor = Real(scene_.numerics.solid_floor);
   if (scene_.materials.size() == 1) {
     opt.strength = material_strength(scene_.materials[0]);
     opt.strength_rho0 = Real(scene_.materials[0].rho0 > 0 ? scene_.materials[0].rho0 : 1.0);
