@@ -34,6 +34,17 @@ namespace st = mp::strength;
 #define EXPECT_REAL_EQ(a, b) EXPECT_DOUBLE_EQ(a, b)
 #endif
 
+// A material point's state for the flow-stress models.
+st::PointState point_state(Real eps_p, Real eps_dot, Real p, Real eta, Real T) {
+  st::PointState x;
+  x.eps_p = eps_p;
+  x.eps_dot = eps_dot;
+  x.p = p;
+  x.eta = eta;
+  x.T = T;
+  return x;
+}
+
 st::Mat3 gradient(std::initializer_list<double> g) {
   Real a[9];
   int i = 0;
@@ -400,12 +411,7 @@ TEST(FlowStress, RecordDispatchAndTemperature) {
   const Real T = sg.temperature_of(e);
   std::printf("copper: e %.6g cm^2/us^2 -> T %.9g K (cv %.4g)\n", e, T, cu->cv);
   EXPECT_NEAR(T, 400, 4 * kEps * 400);
-  st::PointState x;
-  x.eps_p = 0.3;
-  x.eps_dot = 1e-2;
-  x.p = 0.05;
-  x.eta = 1.05;
-  x.T = 450;
+  const st::PointState x = point_state(0.3, 1e-2, 0.05, 1.05, 450);
   EXPECT_EQ(sg.yield_stress(x), cu->sg.yield_stress(x.eps_p, x.p, x.eta, x.T));
   EXPECT_EQ(sg.shear_modulus(x), cu->sg.shear_modulus(x.p, x.eta, x.T));
   EXPECT_EQ(jc.yield_stress(x), cu->jc.yield_stress(x.eps_p, x.eps_dot, x.T));
@@ -438,12 +444,7 @@ TEST(FlowStress, Steel4340ShearModulus) {
   EXPECT_EQ(steel->G0, Real(0.80));
   EXPECT_EQ(steel->jc.G0, steel->G0);
   const st::FlowStress jc = st::make_flow_stress(*steel, st::kJohnsonCook);
-  st::PointState x;
-  x.eps_p = 0.1;
-  x.eps_dot = 1e-2;
-  x.p = 0.01;
-  x.eta = 1.01;
-  x.T = 500;
+  st::PointState x = point_state(0.1, 1e-2, 0.01, 1.01, 500);
   EXPECT_EQ(jc.shear_modulus(x), Real(0.80));
   x.T = 1800;  // above T_melt 1793 K
   EXPECT_EQ(jc.shear_modulus(x), Real(0));

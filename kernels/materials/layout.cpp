@@ -24,7 +24,6 @@ struct HaloSource {
   // a ghost's content comes from owned cells (never changed here) and the messages, so ghosts
   // may be written where they are (the dense layout always does)
   static constexpr bool in_place = true;
-  static constexpr bool ghosts_only = true;  // (exchange() assigns after all three sweeps)
   Dev dev;
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
@@ -302,18 +301,13 @@ void MaterialState::exchange() {
                 return;
               }
               Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
-              before.content(x[0], x[1], x[2], a, r, en);
-              int mask = 0, cnt = 0;
-              for (int m = 0; m < nmat; ++m)
-                if (a[m] > 0) {
-                  mask |= 1 << m;
-                  ++cnt;
-                }
+              const int cnt = new_content(before, x[0], x[1], x[2], nmat, a, r, en, id);
               const long at = Kokkos::atomic_fetch_add(&counter(), long(3 * cnt)) - base;
               long o = 3 * ncell + at;
+              int mask = 0;
               for (int m = 0; m < nmat; ++m) {
-                if (!((mask >> m) & 1)) continue;
+                if (!(a[m] > 0)) continue;
+                mask |= 1 << m;
                 buf(o) = a[m];
                 buf(o + 1) = r[m];
                 buf(o + 2) = en[m];
@@ -330,8 +324,7 @@ void MaterialState::exchange() {
         sent[s] = 3 * ncell + records;
       }
       if (any) {
-        long got[2];
-        exchange_sized(mesh_, d, send_, sent, recv_[d], got, 100, "matter::recv");
+        exchange_sized(mesh_, d, send_, sent, recv_[d], 100, "matter::recv");
         for (int s = 0; s < 2; ++s) src.recv[d][s] = recv_[d][s];
       }
       src.done = d + 1;

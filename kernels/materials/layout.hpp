@@ -342,15 +342,6 @@ struct InPlace<S, std::void_t<decltype(S::in_place)>> : std::integral_constant<b
 // true only when content(i, j, k) would give exactly one material `id` with these values, bit
 // for bit (the same arithmetic on the same operands); false says "ask content()". It spares
 // the per-material arrays (3 x nmat values zeroed, filled and scanned per cell).
-// A source that changes exactly the ghost cells (the material halo) declares
-//   static constexpr bool ghosts_only = true;
-// and the in-place pass then walks the ghost cells only, not the block.
-template <class S, class = void>
-struct GhostsOnly : std::false_type {};
-template <class S>
-struct GhostsOnly<S, std::void_t<decltype(S::ghosts_only)>>
-    : std::integral_constant<bool, S::ghosts_only> {};
-
 template <class S, class = void>
 struct HasPure : std::false_type {};
 template <class S>
@@ -414,77 +405,55 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   auto stamp = stamp_;
   if constexpr (InPlace<Source>::value) {
     long moved = 0;
-    const auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-      if (!src.changed(i, j, k)) return;
-      if constexpr (HasPure<Source>::value) {
-        int pid = -1;
-        Real pr = 0, pe = 0;
-        if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) && pid == old.mat(i, j, k)) {
-          crho(i, j, k) = pr;  // (cell_average of one material: its own values)
-          ce(i, j, k) = pe;
-          stamp(i, j, k) = 1;
-          return;
-        }
-      }
-      Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-      int id = 0;
-      const int n = new_content(src, i, j, k, nmat, a, r, en, id);
-      // The same materials in the same slots: a neighbour's content may read this cell's
-      // layout (the remap reads the donor's material ids to split its face fluxes), so only
-      // values change here, never which material a pure cell or a slot holds.
-      const int om = old.mat(i, j, k), onm = old.nm(i, j, k);
-      bool same = onm == n && (om >= 0) == (n <= 1);
-      if (same && om >= 0) {
-        same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
-      } else if (same) {
-        int q = old.first(i, j, k);
-        for (int m = 0; m < nmat && same; ++m)
-          if (a[m] > 0) same = old.smat(q++) == m;
-      }
-      if (same && om < 0) {
-        int q = old.first(i, j, k);
-        for (int m = 0; m < nmat; ++m) {
-          if (!(a[m] > 0)) continue;
-          old.salpha(q) = a[m];
-          old.srho(q) = r[m];
-          old.se(q) = en[m];
-          old.sp(q) = 0;
-          ++q;
-        }
-      } else if (!same) {
-        stamp(i, j, k) = 0;
-        ++acc;  // the layout changes here: left to the rebuild
-        return;
-      }
-      cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
-      stamp(i, j, k) = 1;
-    };
-    if constexpr (GhostsOnly<Source>::value) {
-      // the ghost cells only, by rows along k, in three groups: x ghosts (y, z owned), y ghosts
-      // (z owned), z ghosts (the ng cells at each end of every row)
-      const int g = 2 * Mesh::ng, ng = Mesh::ng, ex = ex_;
-      const int n1 = ey_ - g, n2 = ez_ - g;
-      const int r0 = g * n1, r1 = ex * g, r2 = ex * ey;
-      Kokkos::parallel_reduce(
-          name + "::in_place", Policy1(0, r0 + r1 + r2),
-          KOKKOS_LAMBDA(int row, long& acc) {
-            auto ghost = [=](int b, int e) { return b < ng ? b : e - g + b; };
-            if (row < r0) {
-              const int i = ghost(row / n1, ex), j = ng + row % n1;
-              for (int k = ng; k < ng + n2; ++k) in_place(i, j, k, acc);
-            } else if (row < r0 + r1) {
-              const int i = (row - r0) / g, j = ghost((row - r0) % g, ey);
-              for (int k = ng; k < ng + n2; ++k) in_place(i, j, k, acc);
-            } else {
-              const int i = (row - r0 - r1) / ey, j = (row - r0 - r1) % ey;
-              for (int b = 0; b < g; ++b) in_place(i, j, ghost(b, ez), acc);
+    Kokkos::parallel_reduce(
+        name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
+        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+          if (!src.changed(i, j, k)) return;
+          if constexpr (HasPure<Source>::value) {
+            int pid = -1;
+            Real pr = 0, pe = 0;
+            if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) &&
+                pid == old.mat(i, j, k)) {
+              crho(i, j, k) = pr;  // (cell_average of one material: its own values)
+              ce(i, j, k) = pe;
+              stamp(i, j, k) = 1;
+              return;
             }
-          },
-          moved);
-    } else {
-      Kokkos::parallel_reduce(name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}), in_place,
-                              moved);
-    }
+          }
+          Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+          int id = 0;
+          const int n = new_content(src, i, j, k, nmat, a, r, en, id);
+          // The same materials in the same slots: a neighbour's content may read this cell's
+          // layout (the remap reads the donor's material ids to split its face fluxes), so only
+          // values change here, never which material a pure cell or a slot holds.
+          const int om = old.mat(i, j, k), onm = old.nm(i, j, k);
+          bool same = onm == n && (om >= 0) == (n <= 1);
+          if (same && om >= 0) {
+            same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
+          } else if (same) {
+            int q = old.first(i, j, k);
+            for (int m = 0; m < nmat && same; ++m)
+              if (a[m] > 0) same = old.smat(q++) == m;
+          }
+          if (same && om < 0) {
+            int q = old.first(i, j, k);
+            for (int m = 0; m < nmat; ++m) {
+              if (!(a[m] > 0)) continue;
+              old.salpha(q) = a[m];
+              old.srho(q) = r[m];
+              old.se(q) = en[m];
+              old.sp(q) = 0;
+              ++q;
+            }
+          } else if (!same) {
+            stamp(i, j, k) = 0;
+            ++acc;  // the layout changes here: left to the rebuild
+            return;
+          }
+          cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+          stamp(i, j, k) = 1;
+        },
+        moved);
     if (moved == 0) return;
   }
   // Changed and not yet written in place (every changed cell's stamp was written above).

@@ -368,15 +368,13 @@ double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buf
 }
 
 double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long send_count[2],
-                      Buffer recv[2], long recv_count[2], int tag_base,
-                      const std::string& recv_label) {
+                      Buffer recv[2], int tag_base, const std::string& recv_label) {
   Kokkos::fence();
   typename Buffer::HostMirror hsend[2];
   MPI_Request req[2];
   int nreq = 0;
   double bytes = 0;
   for (int s = 0; s < 2; ++s) {
-    recv_count[s] = 0;
     if (mesh.physical_boundary(d, s)) continue;
     hsend[s] = Kokkos::create_mirror_view(send[s]);
     Kokkos::deep_copy(hsend[s], send[s]);
@@ -398,7 +396,6 @@ double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long 
     auto h = Kokkos::create_mirror_view(recv[s]);
     MPI_CHECK(MPI_Recv(h.data(), n, mpi_real(), src, tag, mesh.comm(), MPI_STATUS_IGNORE));
     Kokkos::deep_copy(recv[s], h);
-    recv_count[s] = n;
   }
   MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
   return bytes;

@@ -47,10 +47,9 @@ double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buf
 // The same for messages whose length varies: send[s] carries send_count[s] values, and what
 // arrives from side s (its length found with MPI_Probe) is received into recv[s], which is
 // reallocated (labelled recv_label), a quarter larger than the message, only when it is too short.
-// recv_count[s] gets the length received (0 on a physical boundary). Returns the bytes sent.
+// Returns the bytes sent.
 double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long send_count[2],
-                      Buffer recv[2], long recv_count[2], int tag_base,
-                      const std::string& recv_label);
+                      Buffer recv[2], int tag_base, const std::string& recv_label);
 
 class Halo {
  public:
