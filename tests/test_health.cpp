@@ -261,6 +261,15 @@ void bad_material_in_mixed_cell(const std::string& layout) {
     EXPECT_FALSE(h.ok);
     EXPECT_EQ(h.cell, cell);
     EXPECT_EQ(h.what, c.what);
+    // the material's own state in that cell: half the cell, the poked value, the other kept
+    EXPECT_EQ(h.material, c.mat);
+    EXPECT_NEAR(h.m_fraction, 0.5, 1e-6);
+    const double poked = c.energy ? h.m_e : h.m_rho, kept = c.energy ? h.m_rho : h.m_e;
+    if (std::isnan(c.value))
+      EXPECT_TRUE(std::isnan(poked));
+    else
+      EXPECT_EQ(poked, double(Real(c.value)));
+    EXPECT_GT(kept, 0);
     if (mine) Kokkos::deep_copy(v, old);
     EXPECT_TRUE(hy.check().ok);
   }

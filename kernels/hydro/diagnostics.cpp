@@ -164,28 +164,41 @@ Health Hydro::check() const {
   h.ok = false;
   h.cell = {int(global_first % nx), int((global_first / nx) % ny), int(global_first / (nx * ny))};
   // The owner reads the cell's values and shares them.
-  double vals[3] = {0, 0, 0};
+  double vals[6] = {0, 0, 0, 0, 0, 0};
   bool mine = true;
   int loc[3];
   for (int d = 0; d < 3; ++d) {
     loc[d] = h.cell[d] - mesh_.offset(d) + Mesh::ng;
     if (loc[d] < Mesh::ng || loc[d] >= Mesh::ng + mesh_.owned_cells(d)) mine = false;
   }
+  auto read = [&](const Field3& f) {
+    Real x = 0;
+    Kokkos::deep_copy(x, Kokkos::subview(f, loc[0], loc[1], loc[2]));
+    return double(x);
+  };
   if (mine) {
-    auto read = [&](const Field3& f) {
-      Real x = 0;
-      Kokkos::deep_copy(x, Kokkos::subview(f, loc[0], loc[1], loc[2]));
-      return double(x);
-    };
     vals[0] = read(rho);
     vals[1] = read(e);
     vals[2] = read(p);
   }
-  double all[3];
-  MPI_Allreduce(vals, all, 3, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  // a bad material's own fraction, density and energy in that cell (every rank fills the
+  // fields, a collective-free kernel; only the owner reads them)
+  if (bad_material >= 0)
+    for (int which = 0; which < 3; ++which) {
+      const Field3 f = mm_->material_field(bad_material, which);
+      if (mine) vals[3 + which] = read(f);
+    }
+  double all[6];
+  MPI_Allreduce(vals, all, 6, MPI_DOUBLE, MPI_SUM, mesh_.comm());
   h.rho = all[0];
   h.e = all[1];
   h.p = all[2];
+  if (bad_material >= 0) {
+    h.material = bad_material;
+    h.m_fraction = all[3];
+    h.m_rho = all[4];
+    h.m_e = all[5];
+  }
   h.volume = g.cell_volume();
   // The message names the quantity as the dumps do (density, energy, pressure, velocity_x ...).
   if (bad_material >= 0) {

@@ -138,6 +138,9 @@ struct Health {
   std::array<int, 3> cell{};
   double rho = 0, e = 0, p = 0, volume = 0;
   std::string what;
+  // A bad material of a mixed cell (what names it): its id (-1: none) and its own state there.
+  int material = -1;
+  double m_fraction = 0, m_rho = 0, m_e = 0;
 };
 
 class Hydro {

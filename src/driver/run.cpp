@@ -273,6 +273,10 @@ int run(const CommandLine& cl) {
       if (h.cell[0] >= 0)
         os << " in cell (" << h.cell[0] << ", " << h.cell[1] << ", " << h.cell[2]
            << "): density = " << h.rho << ", energy = " << h.e << ", pressure = " << h.p;
+      if (h.material >= 0 && h.material < int(scene.materials.size()))
+        os << "; material " << h.material << " (" << scene.materials[h.material].name
+           << ") there: fraction = " << h.m_fraction << ", density = " << h.m_rho
+           << ", energy = " << h.m_e;
       os << "; final dump and summary written to " << settings.output_dir;
       if (rank == 0) std::fprintf(stderr, "%s\n", os.str().c_str());
       return 3;

@@ -1058,6 +1058,11 @@ std::string Simulation::summary_json(const RunResult& r) const {
                      {"density", num(h.rho, "failure.density")},
                      {"energy", num(h.e, "failure.energy")},
                      {"pressure", num(h.p, "failure.pressure")}};
+    if (h.material >= 0)
+      js["failure"]["material"] = {{"id", h.material},
+                                   {"fraction", num(h.m_fraction, "failure.material.fraction")},
+                                   {"density", num(h.m_rho, "failure.material.density")},
+                                   {"energy", num(h.m_e, "failure.material.energy")}};
   }
   js["non_finite"] = non_finite;
   return js.dump(2) + "\n";
