@@ -279,44 +279,42 @@ struct FaceFluxes {
       mf(i, j, k) = M[m0];
       ef(i, j, k) = E[m0];
     } else {
-      // Onion skin: layer L holds the materials with id <= L; its plane is reconstructed from
-      // the cumulative fraction, and the material's flux is the difference of two layers.
-      const Real cellv = dx * dy * dz;
-      const Real af = mabs(f);
-      const Real scale = pd / cellv;  // the Lagrangian donor volume mapped onto the cell box
-      Real acc = 0, done = 0;
-      int left = count;
+      // Onion skin (plic::onion_volumes): the plane normal of each layer but the last (which
+      // takes what is left), from the cumulative fractions around the donor
+      Real nrm[kMaxMaterials][3];
+      for (int m = 0, left = count; m < nmat; ++m) {
+        if (!(a[m] > 0)) continue;
+        if (--left == 0) break;
+        Real* n = nrm[m];
+        n[0] = n[1] = n[2] = 0;
+        if (iface == 0) {
+          Real st3[3][3][3];
+          for (int c = 0; c < 3; ++c)
+            for (int b = 0; b < 3; ++b)
+              for (int q = 0; q < 3; ++q)
+                st3[q][b][c] = mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
+          plic::youngs_normal(st3, dx, dy, dz, n);
+        } else if (iface == 1) {
+          const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
+                         mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
+          n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
+        }
+      }
+      Real vm[kMaxMaterials];
+      plic::onion_volumes(nmat, count, a, nrm, pd, dx, dy, dz, d, f, vm);
+      // the donor's other face along d: where it empties through it too, the pair takes no
+      // more of a material than the donor holds (plic::limit_pair)
+      const int oi = f > 0 ? di : di + sx, oj = f > 0 ? dj : dj + sy, ok = f > 0 ? dk : dk + sz;
+      const Real fo = vf(oi, oj, ok);
+      if (f > 0 ? fo < 0 : fo > 0) {
+        Real vo[kMaxMaterials];
+        plic::onion_volumes(nmat, count, a, nrm, pd, dx, dy, dz, d, fo, vo);
+        plic::limit_pair(nmat, a, pd, vm, vo);
+      }
       Real mtot = 0, etot = 0;
       for (int m = 0; m < nmat; ++m) {
         if (!(a[m] > 0)) continue;
-        --left;
-        acc += a[m];
-        Real vm;
-        if (left == 0) {
-          vm = af - done;
-        } else {
-          Real n[3] = {0, 0, 0};
-          if (iface == 0) {
-            Real st3[3][3][3];
-            for (int c = 0; c < 3; ++c)
-              for (int b = 0; b < 3; ++b)
-                for (int q = 0; q < 3; ++q)
-                  st3[q][b][c] =
-                      mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
-            plic::youngs_normal(st3, dx, dy, dz, n);
-          } else if (iface == 1) {
-            const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
-                           mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
-            n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
-          }
-          const Real layer =
-              scale * plic::material_flux(n, mmin(acc, Real(1)), dx, dy, dz, d, f > 0, af / scale);
-          const Real cum = mmin(mmax(layer, done), af);
-          vm = cum - done;
-          done = cum;
-        }
-        vm = mmin(mmax(vm, Real(0)), a[m] * pd);
-        const Real sv = f > 0 ? vm : -vm;
+        const Real sv = f > 0 ? vm[m] : -vm[m];
         V[m] = sv;
         M[m] = sv * r[m];
         E[m] = M[m] * en[m];
