@@ -491,11 +491,14 @@ TEST(Plic, OnionFacesOfADivergentDonorTakeNoMoreThanItHolds) {
           for (const auto& n1 : normals) {
             const Real a[3] = {Real(a0), Real(eps), Real(1 - a0 - eps)};
             const Real nrm[3][3] = {{n0[0], n0[1], n0[2]}, {n1[0], n1[1], n1[2]}, {0, 0, 0}};
+            const auto normal = [&](int m, Real* n) {
+              for (int c = 0; c < 3; ++c) n[c] = nrm[m][c];
+            };
             const Real fl =
                 Real(slab) * pd;  // out through the high face, and as much through the low
             Real hi[3], lo[3];
-            plic::onion_volumes(3, 3, a, nrm, pd, dx, dy, dz, 0, fl, hi);
-            plic::onion_volumes(3, 3, a, nrm, pd, dx, dy, dz, 0, -fl, lo);
+            plic::onion_volumes(3, 3, a, normal, pd, dx, dy, dz, 0, fl, hi);
+            plic::onion_volumes(3, 3, a, normal, pd, dx, dy, dz, 0, -fl, lo);
             Real hi_l[3] = {hi[0], hi[1], hi[2]}, lo_l[3] = {lo[0], lo[1], lo[2]};
             plic::limit_pair(3, a, pd, hi_l, lo);
             plic::limit_pair(3, a, pd, lo_l, hi);

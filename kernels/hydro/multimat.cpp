@@ -281,11 +281,7 @@ struct FaceFluxes {
     } else {
       // Onion skin (plic::onion_volumes): the plane normal of each layer but the last (which
       // takes what is left), from the cumulative fractions around the donor
-      Real nrm[kMaxMaterials][3];
-      for (int m = 0, left = count; m < nmat; ++m) {
-        if (!(a[m] > 0)) continue;
-        if (--left == 0) break;
-        Real* n = nrm[m];
+      auto normal = [&](int m, Real* n) {
         n[0] = n[1] = n[2] = 0;
         if (iface == 0) {
           Real st3[3][3][3];
@@ -299,16 +295,17 @@ struct FaceFluxes {
                          mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
           n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
         }
-      }
+      };
       Real vm[kMaxMaterials];
-      plic::onion_volumes(nmat, count, a, nrm, pd, dx, dy, dz, d, f, vm);
+      plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, f, vm);
       // the donor's other face along d: where it empties through it too, the pair takes no
-      // more of a material than the donor holds (plic::limit_pair)
+      // more of a material than the donor holds (plic::limit_pair; the normals computed again,
+      // as this is rare)
       const int oi = f > 0 ? di : di + sx, oj = f > 0 ? dj : dj + sy, ok = f > 0 ? dk : dk + sz;
       const Real fo = vf(oi, oj, ok);
       if (f > 0 ? fo < 0 : fo > 0) {
         Real vo[kMaxMaterials];
-        plic::onion_volumes(nmat, count, a, nrm, pd, dx, dy, dz, d, fo, vo);
+        plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, fo, vo);
         plic::limit_pair(nmat, a, pd, vm, vo);
       }
       Real mtot = 0, etot = 0;

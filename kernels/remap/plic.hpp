@@ -217,12 +217,14 @@ KOKKOS_INLINE_FUNCTION Real material_flux(const Real n[3], Real fraction, Real d
 }
 
 // Onion-skin split of one face's volume flux among a donor's materials (layer L holds the
-// materials with id <= L; its plane, normal nrm[L], is reconstructed from the cumulative
-// fraction; a material's share is the difference of two layers; the last material present
-// takes what is left). `a` are the donor's volume fractions (nmat of them, `count` > 0
-// present), `pd` its Lagrangian volume, `fl` the face's signed volume flux (> 0: through the
-// donor's high face along `axis`). Writes each material's volume vm[m] in [0, a[m] pd].
-KOKKOS_INLINE_FUNCTION void onion_volumes(int nmat, int count, const Real* a, const Real (*nrm)[3],
+// materials with id <= L; its plane is reconstructed from the cumulative fraction; a material's
+// share is the difference of two layers; the last material present takes what is left). `a`
+// are the donor's volume fractions (nmat of them, `count` > 0 present), `pd` its Lagrangian
+// volume, `fl` the face's signed volume flux (> 0: through the donor's high face along `axis`);
+// normal(m, n) writes layer m's unit normal into n[3] (asked only for the layers that need one,
+// in material order). Writes each material's volume vm[m] in [0, a[m] pd].
+template <class Normal>
+KOKKOS_INLINE_FUNCTION void onion_volumes(int nmat, int count, const Real* a, const Normal& normal,
                                           Real pd, Real dx, Real dy, Real dz, int axis, Real fl,
                                           Real* vm) {
   const Real scale = pd / (dx * dy * dz);  // the Lagrangian donor volume mapped onto the box
@@ -238,8 +240,10 @@ KOKKOS_INLINE_FUNCTION void onion_volumes(int nmat, int count, const Real* a, co
     if (left == 0) {
       v = af - done;
     } else {
+      Real n[3];
+      normal(m, n);
       const Real layer =
-          scale * material_flux(nrm[m], mmin(acc, Real(1)), dx, dy, dz, axis, fl > 0, af / scale);
+          scale * material_flux(n, mmin(acc, Real(1)), dx, dy, dz, axis, fl > 0, af / scale);
       const Real cum = mmin(mmax(layer, done), af);
       v = cum - done;
       done = cum;
