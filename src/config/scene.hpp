@@ -96,9 +96,8 @@ struct NumericsSpec {
   std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
   double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
   std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
-  int relaxation_iterations = 20;
-  double solid_floor = 0;  // mixed cells: least rho/rho0 of a Mie-Grueneisen material (0: none) //
-                           // most pressure-relaxation Newton updates per cycle
+  int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
+  double solid_floor = 0;  // mixed cells: least rho/rho0 of a Mie-Grueneisen material (0: none)
 };
 
 struct OutputSpec {
