@@ -322,8 +322,8 @@ TEST(Extremes, Problem123StaysPositive) {
   // Positivity itself is the health check's (ASSERT_TRUE(ok) above). The exact solution has
   // its minimum density and internal energy in the star state between the two rarefactions'
   // tails, x in 0.5 -+ c* t: the scheme's minima must lie there too, not at a spurious
-  // undershoot elsewhere; and its lowest internal energy near the exact e*, converging: -12.9 %
-  // at 200 cells, -8.8 % at 400 (measured 2026-12-02; bound 20 % at 200 cells and 10 % at 400,
+  // undershoot elsewhere; and its lowest internal energy near the exact e*, converging: -12.4 %
+  // at 200 cells, -8.3 % at 400 (measured 2026-12-02; bound 20 % at 200 cells and 10 % at 400,
   // with the error falling). The centre itself converges (Problem123CentreConverges below).
   const auto at_min = [&](const std::vector<double>& f) {
     return p.x[std::min_element(f.begin(), f.end()) - f.begin()];
@@ -359,16 +359,15 @@ TEST(Extremes, Problem123StaysPositive) {
 
 // The 123 problem's centre (issue #16): the star state between the two rarefactions, rho* =
 // 0.02185, e* = 0.2167, must be approached as the mesh is refined. Two defects kept it away
-// (docs/numerics.md, "One cycle", items 6 and "Initial state"): the node on the velocity jump
-// started at the left state's -2 instead of the painted momentum's 0, so the solution was not
-// symmetric about x = 0.5 (1.5e-2 of the density) and the measured centre sat between two
-// different cells; and the KE fix charged the near-vacuum centre's cells for kinetic energy the
-// remap's limited slopes carried out of the draining centre nodes but that no node held (the
-// centre's entropy p / rho^gamma fell from 0.400 to 0.285 by t = 0.01). Measured 2026-12-02, the
-// mean of the two cells beside x = 0.5: rho -1.0 % / -0.3 %, e -1.7 % / -1.4 % at 400 / 800
-// cells (+1.1 % / -0.8 % at 1600); before, rho -7.0 / -14.0 / -20.8 % and e +26.7 / +27.1 /
-// +31.6 % at 400 / 800 / 1600. Bounds: symmetric to round-off, each error within 3 % and
-// smaller at 800 than at 400.
+// (docs/numerics.md, the 123 section): the node on the velocity jump started at the left
+// state's -2 instead of the painted momentum's 0, so the solution was not symmetric about
+// x = 0.5 (1.5e-2 of the density) and the measured centre sat between two different cells;
+// and the KE fix charged the near-vacuum centre's cells for kinetic energy the remap's limited
+// slopes carried out of the draining centre nodes but that no node held (the centre's entropy
+// p / rho^gamma fell from 0.400 to 0.285 by t = 0.01). Measured 2026-12-02, the mean of the two
+// cells beside x = 0.5: rho -0.99 % / -0.55 %, e -1.52 % / -1.32 % at 400 / 800 cells (+0.7 % /
+// -0.8 % at 1600); before, rho -7.0 / -14.0 / -20.8 % and e +26.5 / +26.9 / +31.4 % at 400 /
+// 800 / 1600. Bounds: symmetric to round-off, each error within 3 %, smaller at 800 than 400.
 TEST(Extremes, Problem123CentreConverges) {
   const exact::Riemann rs({1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 1.4, 1.4);
   const double e_star = rs.p_star() / (0.4 * rs.rho_star_left());

@@ -233,7 +233,10 @@ INSTANTIATE_TEST_SUITE_P(Layouts, Restart, ::testing::Values("dense", "compact")
 // survives a restart bit for bit, from half the ranks: an aluminium sphere driven obliquely
 // through a block (3-D shear, plasticity), and a point-detonated block of gamma-law explosive
 // stopped with its front part way across (at cycle 40 of 73: at cycle 17, where it stopped
-// before, no cell had started to burn, so the burn fraction restored was all zeros).
+// before, no cell had started to burn, so the burn fraction restored was all zeros). The sphere
+// stops at cycle 25 of 44: since its surface nodes start with the painted momentum of their
+// cells (2026-12-02, docs/numerics.md "Initial node velocities") no cell has yielded by cycle 17,
+// and 1147 of 1920 have by 25.
 TEST(ModuleRestart, StrengthAndBurnFromHalfTheRanksAreBitwiseEqual) {
   const int n = world_size();
   const std::vector<Case> cases = {
@@ -245,7 +248,8 @@ TEST(ModuleRestart, StrengthAndBurnFromHalfTheRanksAreBitwiseEqual) {
         "shape: sphere, center: [1, 0.5, 0.4], radius: 0.3, density: 2.703, energy: 1.0e-5, "
         "velocity: [0.02, 0.01, -0.005]}]",
         "time.end=0.6", "output.write=false"},
-       false},
+       false,
+       25},
       {"mader.yaml",
        {"mesh.cells=[24,10,8]", "mesh.hi=[1,0.4,0.32]",
         "materials.0.burn.detonators=[{type: point, at: [0.1, 0.2, 0.16]}]", "time.end=0.5",

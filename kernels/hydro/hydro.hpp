@@ -27,6 +27,26 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, 
          fz(i, j, k);
 }
 
+// Specific internal energy a cell of mass m and specific energy e takes from the KE fix (issue
+// #16; docs/numerics.md, "One cycle", item 6): each of its 8 nodes holds, in `kel`, either its
+// kinetic-energy loss L >= 0, of which every cell takes 1/8, or, where the remap made kinetic
+// energy (L < 0), L over the internal energy of its 8 cells (m max(e, 0) summed), so that each
+// cell pays the same fraction of its own internal energy — a cold cell beside hot ones pays
+// little, and the sum over the 8 cells is L: total energy is kept (x fastest, fixed order).
+KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k, Real m, Real e) {
+  Real gain = 0, frac = 0;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const Real x = kel(i + a, j + b, k + c);
+        if (x >= 0)
+          gain += x;
+        else
+          frac += x;
+      }
+  return Real(0.125) * gain / m + frac * mmax(e, Real(0));
+}
+
 // Sum of a node field over the 8 corners of cell (i, j, k), x fastest.
 KOKKOS_INLINE_FUNCTION Real corner_sum(const Field3& f, int i, int j, int k) {
   Real sum = 0;

@@ -80,10 +80,10 @@ struct DualUpdate {
 };
 
 // Velocity of the donor node of the dual face above node c along d (mass flux f), and in out[3]
-// 1 where the flow expands across the face (the receiving node runs ahead of the donor along
-// d), else 0.
+// 1 where `linear` and the flow expands across the face (the receiving node runs ahead of the
+// donor along d), else 0.
 KOKKOS_INLINE_FUNCTION void dual_donor(const Field3& u, const Field3& v, const Field3& w, int ci,
-                                       int cj, int ck, int d, Real f, Real out[4]) {
+                                       int cj, int ck, int d, Real f, bool linear, Real out[4]) {
   const int s = f > 0 ? 0 : 1;
   const int sx = d == 0, sy = d == 1, sz = d == 2;
   const int di = ci + s * sx, dj = cj + s * sy, dk = ck + s * sz;
@@ -92,7 +92,7 @@ KOKKOS_INLINE_FUNCTION void dual_donor(const Field3& u, const Field3& v, const F
   out[1] = v(di, dj, dk);
   out[2] = w(di, dj, dk);
   const Field3& n = d == 0 ? u : d == 1 ? v : w;
-  out[3] = (n(ri, rj, rk) - n(di, dj, dk)) * f > 0 ? Real(1) : Real(0);
+  out[3] = linear && (n(ri, rj, rk) - n(di, dj, dk)) * f > 0 ? Real(1) : Real(0);
 }
 
 }  // namespace
@@ -239,6 +239,13 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // updates the nodes from their two faces; the unsplit step does both per node. Both run the
   // same point functions in the same order, so the fields do not depend on the path.
   auto u = s_.u, v = s_.v, w = s_.w, un = s_.ub, vn = s_.vb, wn = s_.wb, kel = s_.ke_loss;
+  // The KE fix's budget in a single-material scene (docs/numerics.md, "One cycle", item 6): an
+  // expanding face carries no slope spread (ke_carried), and a node that made kinetic energy
+  // charges its cells by their internal energy (ke_fix_share). Not yet in multi-material
+  // scenes: their sweep brings the ghost cells' averages up to date only in the exchange after
+  // it, so a node by a rank boundary would weigh stale ghosts (1/2/4 ranks would differ); they
+  // keep the full form and the equal shares.
+  const bool weigh = opt_.ke_fix && !mm_;
   auto finish = [=] KOKKOS_FUNCTION(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
                                     const DualUpdate& du) {
     const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
@@ -247,7 +254,20 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     wn(i, j, k) = w1;
     const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
     const Real ke1 = Real(0.5) * du.m1 * (u1 * u1 + v1 * v1 + w1 * w1);
-    kel(i, j, k) = ke0 + du.ke_flux - ke1;
+    const Real loss = ke0 + du.ke_flux - ke1;
+    if (!weigh || loss >= 0) {
+      kel(i, j, k) = loss;
+      return;
+    }
+    // made kinetic energy: stored per unit internal energy of the node's 8 cells (ke_fix_share)
+    Real content = 0;
+    for (int c = 0; c < 2; ++c)
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
+          content += rho(ci, cj, ck) * post(ci, cj, ck) * mmax(e(ci, cj, ck), Real(0));
+        }
+    kel(i, j, k) = content > 0 ? loss / content : Real(0);
   };
   if (int(ax + ay + az) == 1) {
     const int d = ax > 0 ? 0 : ay > 0 ? 1 : 2;
@@ -280,8 +300,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
           const int li = i - sx, lj = j - sy, lk = k - sz;
           const Real f_lo = F(li, lj, lk), f_hi = F(i, j, k);
           Real dlo[4], dhi[4];
-          dual_donor(u, v, w, li, lj, lk, d, f_lo, dlo);
-          dual_donor(u, v, w, i, j, k, d, f_hi, dhi);
+          dual_donor(u, v, w, li, lj, lk, d, f_lo, weigh, dlo);
+          dual_donor(u, v, w, i, j, k, d, f_hi, weigh, dhi);
           du.add(f_lo, f_hi, U(li, lj, lk), U(i, j, k), V(li, lj, lk), V(i, j, k), W(li, lj, lk),
                  W(i, j, k), dlo, dhi);
           finish(i, j, k, m0, u0, v0, w0, du);
@@ -298,8 +318,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
             const Real f_lo = dual_mass_flux(mf, li, lj, lk, d);
             const Real f_hi = dual_mass_flux(mf, i, j, k, d);
             Real dlo[4], dhi[4];
-            dual_donor(u, v, w, li, lj, lk, d, f_lo, dlo);
-            dual_donor(u, v, w, i, j, k, d, f_hi, dhi);
+            dual_donor(u, v, w, li, lj, lk, d, f_lo, weigh, dlo);
+            dual_donor(u, v, w, i, j, k, d, f_hi, weigh, dhi);
             du.add(f_lo, f_hi, dual_face_value(u, nm, li, lj, lk, d, f_lo, ord),
                    dual_face_value(u, nm, i, j, k, d, f_hi, ord),
                    dual_face_value(v, nm, li, lj, lk, d, f_lo, ord),
@@ -313,11 +333,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   if (opt_.ke_fix && mm_) {
     mm_ke_fix();
   } else if (opt_.ke_fix) {
-    // Each node hands 1/8 of its loss to each of its 8 cells; owned cells read owned nodes only.
+    // Owned cells read owned nodes only.
     Kokkos::parallel_for(
         "remap::ke_fix", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real sum = corner_sum(kel, i, j, k);
-          const Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+          const Real de = ke_fix_share(kel, i, j, k, rho(i, j, k) * post(i, j, k), e(i, j, k));
           e(i, j, k) += mmax(de, ke_fix_floor(e(i, j, k)));
         });
   }
