@@ -27,24 +27,24 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, 
          fz(i, j, k);
 }
 
-// Specific internal energy a cell of mass m and specific energy e takes from the KE fix (issue
-// #16; docs/numerics.md, "One cycle", item 6): each of its 8 nodes holds, in `kel`, either its
-// kinetic-energy loss L >= 0, of which every cell takes 1/8, or, where the remap made kinetic
-// energy (L < 0), L over the internal energy of its 8 cells (m max(e, 0) summed), so that each
-// cell pays the same fraction of its own internal energy — a cold cell beside hot ones pays
-// little, and the sum over the 8 cells is L: total energy is kept (x fastest, fixed order).
-KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k, Real m, Real e) {
+// Specific internal energy a cell of mass m and internal energy w = m max(e, 0) takes from the
+// KE fix (issue #16; docs/numerics.md, "One cycle", item 6): each of its 8 nodes holds, in
+// `kel`, either its kinetic-energy loss L >= 0, of which every cell takes 1/8, or, where the
+// remap made kinetic energy (L < 0), L over the 8 cells' w summed, so that each cell pays the
+// same fraction of its own internal energy — a cold cell beside hot ones pays little, and the
+// 8 cells together pay L: total energy is kept.
+KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k, Real m, Real w) {
   Real gain = 0, frac = 0;
   for (int c = 0; c < 2; ++c)
     for (int b = 0; b < 2; ++b)
       for (int a = 0; a < 2; ++a) {
         const Real x = kel(i + a, j + b, k + c);
-        if (x >= 0)
+        if (x >= 0)  // (separate sums: the two are in different units)
           gain += x;
         else
           frac += x;
       }
-  return Real(0.125) * gain / m + frac * mmax(e, Real(0));
+  return (Real(0.125) * gain + frac * w) / m;
 }
 
 // Sum of a node field over the 8 corners of cell (i, j, k), x fastest.
@@ -131,7 +131,7 @@ struct State {
   Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
   // remap scratch of a split sweep: mass flux and upwind velocities of the dual face above
   // each node along the sweep's axis
-  Field3 dual_flux, dual_u, dual_v, dual_w;
+  Field3 dual_flux, dual_u, dual_v, dual_w, dual_k;  // dual_k: kinetic energy carried per unit mass
   // faces, stored in node-extent views: face d at index i sits at node coordinate i along d
   std::array<Field3, 3> vol_flux;
   std::array<Field3, 3> mass_flux, energy_flux;  // through faces normal to x, y, z

@@ -55,6 +55,7 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.dual_u = mesh.new_field("dual_u", N);
   s_.dual_v = mesh.new_field("dual_v", N);
   s_.dual_w = mesh.new_field("dual_w", N);
+  s_.dual_k = mesh.new_field("dual_ke", N);
   for (int d = 0; d < 3; ++d)
     s_.vol_flux[d] = mesh.new_field(std::string("volume_flux_") + "xyz"[d], N);
   for (int d = 0; d < 3; ++d) {

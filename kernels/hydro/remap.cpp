@@ -46,53 +46,52 @@ KOKKOS_INLINE_FUNCTION Real dual_face_value(const Field3& phi, const Field3& nm,
   return face_value(up, phi(di, dj, dk), dn, sigma, ord);
 }
 
-// Kinetic energy carried through a dual face by mass flux f with face velocity (uf, vf, wf), out
-// of a donor node of velocity (ud, vd, wd): the donor's kinetic energy per unit mass plus the
-// work of the face velocity's departure from it, f (u_d . u_f - |u_d|^2 / 2) — the expansion of
-// f |u_f|^2 / 2 about the donor's velocity to first order. The second-order rest,
-// f |u_f - u_d|^2 / 2, is the spread of the limited slope inside the dual cell, kinetic energy
-// that no node holds; counted as carried it made every draining node (the near-vacuum centre of
-// Toro's 123 problem) export kinetic energy it never had, which the KE fix took from its cells'
-// internal energy (the centre's entropy fell from 0.400 to 0.285 by t = 0.01; docs/numerics.md,
-// "One cycle", item 6). Single-valued per face, so the remap's total kinetic energy budget
-// still closes to round-off.
-KOKKOS_INLINE_FUNCTION Real ke_carried(Real f, Real uf, Real vf, Real wf, const Real dn[4]) {
-  const Real ud = dn[0], vd = dn[1], wd = dn[2];
-  if (dn[3] > 0)
-    return f * ((ud * uf + vd * vf + wd * wf) - Real(0.5) * (ud * ud + vd * vd + wd * wd));
-  return Real(0.5) * f * (uf * uf + vf * vf + wf * wf);
+// Kinetic energy per unit mass carried through a dual face with face velocity (uf, vf, wf) out
+// of a donor node of velocity (ud, vd, wd): |u_f|^2 / 2, or, where `linear` (a single-material
+// scene's expanding face), the donor's kinetic energy plus the work of the face velocity's
+// departure from it, u_d . u_f - |u_d|^2 / 2 — the expansion of |u_f|^2 / 2 about the donor's
+// velocity to first order. The second-order rest, |u_f - u_d|^2 / 2, is the spread of the
+// limited slope inside the donor's dual cell, kinetic energy that no node holds; counted as
+// carried it made every draining node (the near-vacuum centre of Toro's 123 problem) export
+// kinetic energy it never had, which the KE fix took from its cells' internal energy (the
+// centre's entropy fell from 0.400 to 0.285 by t = 0.01; docs/numerics.md, "One cycle", item 6).
+// One value per face, so the remap's kinetic energy budget still closes to round-off.
+KOKKOS_INLINE_FUNCTION Real ke_carried(Real uf, Real vf, Real wf, const Real dn[3], bool linear) {
+  if (linear)
+    return (dn[0] * uf + dn[1] * vf + dn[2] * wf) -
+           Real(0.5) * (dn[0] * dn[0] + dn[1] * dn[1] + dn[2] * dn[2]);
+  return Real(0.5) * (uf * uf + vf * vf + wf * wf);
 }
 
 // A node's mass, momentum and carried kinetic energy, gaining the flux through its low dual
-// face and losing the flux through its high one; `lo` / `hi` are the donor node velocities of
-// the two faces.
+// face and losing the flux through its high one (kl, kh: kinetic energy per unit mass carried).
 struct DualUpdate {
   Real m1, pu, pv, pw, ke_flux;
   KOKKOS_INLINE_FUNCTION void add(Real f_lo, Real f_hi, Real ul, Real uh, Real vl, Real vh, Real wl,
-                                  Real wh, const Real lo[4], const Real hi[4]) {
+                                  Real wh, Real kl, Real kh) {
     m1 += f_lo - f_hi;
     pu += f_lo * ul - f_hi * uh;
     pv += f_lo * vl - f_hi * vh;
     pw += f_lo * wl - f_hi * wh;
     // kinetic energy carried by the same face values, to measure the remap's loss
-    ke_flux += ke_carried(f_lo, ul, vl, wl, lo) - ke_carried(f_hi, uh, vh, wh, hi);
+    ke_flux += f_lo * kl - f_hi * kh;
   }
 };
 
-// Velocity of the donor node of the dual face above node c along d (mass flux f), and in out[3]
-// 1 where `linear` and the flow expands across the face (the receiving node runs ahead of the
-// donor along d), else 0.
-KOKKOS_INLINE_FUNCTION void dual_donor(const Field3& u, const Field3& v, const Field3& w, int ci,
-                                       int cj, int ck, int d, Real f, bool linear, Real out[4]) {
+// The kinetic energy per unit mass carried through the dual face above node c along d (mass
+// flux f, face velocity uf, vf, wf): ke_carried with the donor node's velocity, linear where
+// `linear` and the flow expands across the face (the receiving node runs ahead of the donor
+// along d; `n` is the velocity component along d).
+KOKKOS_INLINE_FUNCTION Real dual_face_ke(const Field3& u, const Field3& v, const Field3& w,
+                                         const Field3& n, int ci, int cj, int ck, int d, Real f,
+                                         Real uf, Real vf, Real wf, bool linear) {
+  if (!linear) return ke_carried(uf, vf, wf, nullptr, false);
   const int s = f > 0 ? 0 : 1;
   const int sx = d == 0, sy = d == 1, sz = d == 2;
   const int di = ci + s * sx, dj = cj + s * sy, dk = ck + s * sz;
   const int ri = ci + (1 - s) * sx, rj = cj + (1 - s) * sy, rk = ck + (1 - s) * sz;
-  out[0] = u(di, dj, dk);
-  out[1] = v(di, dj, dk);
-  out[2] = w(di, dj, dk);
-  const Field3& n = d == 0 ? u : d == 1 ? v : w;
-  out[3] = linear && (n(ri, rj, rk) - n(di, dj, dk)) * f > 0 ? Real(1) : Real(0);
+  const Real dn[3] = {u(di, dj, dk), v(di, dj, dk), w(di, dj, dk)};
+  return ke_carried(uf, vf, wf, dn, (n(ri, rj, rk) - n(di, dj, dk)) * f > 0);
 }
 
 }  // namespace
@@ -221,8 +220,12 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
       de += efz(i, j, k) - efz(i, j, k + 1);
     }
     const Real m1 = m0 + dm;
-    e(i, j, k) = (e(i, j, k) * m0 + de) / m1;
+    const Real e1 = (e(i, j, k) * m0 + de) / m1;
+    e(i, j, k) = e1;
     rho(i, j, k) = m1 / post(i, j, k);
+    // the volume before the step is read no more in it: the cell's internal energy takes its
+    // place, the KE fix's weight (ke_fix_share), and the next step recomputes it
+    pre(i, j, k) = m1 * mmax(e1, Real(0));
   };
   if (mm_) {
     for (int d = 0; d < 3; ++d)
@@ -259,21 +262,17 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
       kel(i, j, k) = loss;
       return;
     }
-    // made kinetic energy: stored per unit internal energy of the node's 8 cells (ke_fix_share)
-    Real content = 0;
-    for (int c = 0; c < 2; ++c)
-      for (int b = 0; b < 2; ++b)
-        for (int a = 0; a < 2; ++a) {
-          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
-          content += rho(ci, cj, ck) * post(ci, cj, ck) * mmax(e(ci, cj, ck), Real(0));
-        }
+    // made kinetic energy: stored per unit internal energy of the node's 8 cells (ke_fix_share;
+    // the cell update left each cell's internal energy in `pre`)
+    const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
     kel(i, j, k) = content > 0 ? loss / content : Real(0);
   };
   if (int(ax + ay + az) == 1) {
     const int d = ax > 0 ? 0 : ay > 0 ? 1 : 2;
     const int sx = d == 0, sy = d == 1, sz = d == 2;
     const Field3 mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
-    auto F = s_.dual_flux, U = s_.dual_u, V = s_.dual_v, W = s_.dual_w;
+    auto F = s_.dual_flux, U = s_.dual_u, V = s_.dual_v, W = s_.dual_w, K = s_.dual_k;
+    const Field3 N = d == 0 ? u : d == 1 ? v : w;  // the velocity component along d
     // the faces between nodes c and c + 1 along d: both faces of every owned node
     int lo[3], hi[3];
     for (int a = 0; a < 3; ++a) {
@@ -284,9 +283,13 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     auto dual_face = [=] KOKKOS_FUNCTION(int i, int j, int k) {
       const Real f = dual_mass_flux(mf, i, j, k, d);
       F(i, j, k) = f;
-      U(i, j, k) = dual_face_value(u, nm, i, j, k, d, f, ord);
-      V(i, j, k) = dual_face_value(v, nm, i, j, k, d, f, ord);
-      W(i, j, k) = dual_face_value(w, nm, i, j, k, d, f, ord);
+      const Real uf = dual_face_value(u, nm, i, j, k, d, f, ord);
+      const Real vf = dual_face_value(v, nm, i, j, k, d, f, ord);
+      const Real wf = dual_face_value(w, nm, i, j, k, d, f, ord);
+      U(i, j, k) = uf;
+      V(i, j, k) = vf;
+      W(i, j, k) = wf;
+      K(i, j, k) = dual_face_ke(u, v, w, N, i, j, k, d, f, uf, vf, wf, weigh);
     };
     // (one launch with the cell update took 10.5 against 8.3 ms per cycle for the two at
     // 64^3, 2 threads: the branch per point costs more than the launch)
@@ -298,12 +301,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
           const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
           DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
           const int li = i - sx, lj = j - sy, lk = k - sz;
-          const Real f_lo = F(li, lj, lk), f_hi = F(i, j, k);
-          Real dlo[4], dhi[4];
-          dual_donor(u, v, w, li, lj, lk, d, f_lo, weigh, dlo);
-          dual_donor(u, v, w, i, j, k, d, f_hi, weigh, dhi);
-          du.add(f_lo, f_hi, U(li, lj, lk), U(i, j, k), V(li, lj, lk), V(i, j, k), W(li, lj, lk),
-                 W(i, j, k), dlo, dhi);
+          du.add(F(li, lj, lk), F(i, j, k), U(li, lj, lk), U(i, j, k), V(li, lj, lk), V(i, j, k),
+                 W(li, lj, lk), W(i, j, k), K(li, lj, lk), K(i, j, k));
           finish(i, j, k, m0, u0, v0, w0, du);
         });
   } else {
@@ -317,15 +316,23 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
             const int li = i - (d == 0), lj = j - (d == 1), lk = k - (d == 2);
             const Real f_lo = dual_mass_flux(mf, li, lj, lk, d);
             const Real f_hi = dual_mass_flux(mf, i, j, k, d);
-            Real dlo[4], dhi[4];
-            dual_donor(u, v, w, li, lj, lk, d, f_lo, weigh, dlo);
-            dual_donor(u, v, w, i, j, k, d, f_hi, weigh, dhi);
-            du.add(f_lo, f_hi, dual_face_value(u, nm, li, lj, lk, d, f_lo, ord),
-                   dual_face_value(u, nm, i, j, k, d, f_hi, ord),
-                   dual_face_value(v, nm, li, lj, lk, d, f_lo, ord),
-                   dual_face_value(v, nm, i, j, k, d, f_hi, ord),
-                   dual_face_value(w, nm, li, lj, lk, d, f_lo, ord),
-                   dual_face_value(w, nm, i, j, k, d, f_hi, ord), dlo, dhi);
+            const Real ul = dual_face_value(u, nm, li, lj, lk, d, f_lo, ord),
+                       uh = dual_face_value(u, nm, i, j, k, d, f_hi, ord),
+                       vl = dual_face_value(v, nm, li, lj, lk, d, f_lo, ord),
+                       vh = dual_face_value(v, nm, i, j, k, d, f_hi, ord),
+                       wl = dual_face_value(w, nm, li, lj, lk, d, f_lo, ord),
+                       wh = dual_face_value(w, nm, i, j, k, d, f_hi, ord);
+            du.add(f_lo, f_hi, ul, uh, vl, vh, wl, wh,
+                   dual_face_ke(u, v, w,
+                                d == 0   ? u
+                                : d == 1 ? v
+                                         : w,
+                                li, lj, lk, d, f_lo, ul, vl, wl, weigh),
+                   dual_face_ke(u, v, w,
+                                d == 0   ? u
+                                : d == 1 ? v
+                                         : w,
+                                i, j, k, d, f_hi, uh, vh, wh, weigh));
           }
           finish(i, j, k, m0, u0, v0, w0, du);
         });
@@ -336,7 +343,8 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     // Owned cells read owned nodes only.
     Kokkos::parallel_for(
         "remap::ke_fix", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real de = ke_fix_share(kel, i, j, k, rho(i, j, k) * post(i, j, k), e(i, j, k));
+          const Real m = rho(i, j, k) * post(i, j, k);
+          const Real de = ke_fix_share(kel, i, j, k, m, m * mmax(e(i, j, k), Real(0)));
           e(i, j, k) += mmax(de, ke_fix_floor(e(i, j, k)));
         });
   }
