@@ -322,17 +322,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
                        vh = dual_face_value(v, nm, i, j, k, d, f_hi, ord),
                        wl = dual_face_value(w, nm, li, lj, lk, d, f_lo, ord),
                        wh = dual_face_value(w, nm, i, j, k, d, f_hi, ord);
+            const Field3& n = d == 0 ? u : d == 1 ? v : w;  // the velocity component along d
             du.add(f_lo, f_hi, ul, uh, vl, vh, wl, wh,
-                   dual_face_ke(u, v, w,
-                                d == 0   ? u
-                                : d == 1 ? v
-                                         : w,
-                                li, lj, lk, d, f_lo, ul, vl, wl, weigh),
-                   dual_face_ke(u, v, w,
-                                d == 0   ? u
-                                : d == 1 ? v
-                                         : w,
-                                i, j, k, d, f_hi, uh, vh, wh, weigh));
+                   dual_face_ke(u, v, w, n, li, lj, lk, d, f_lo, ul, vl, wl, weigh),
+                   dual_face_ke(u, v, w, n, i, j, k, d, f_hi, uh, vh, wh, weigh));
           }
           finish(i, j, k, m0, u0, v0, w0, du);
         });
