@@ -651,7 +651,8 @@ TEST(Relaxation, PartlyBurntExplosiveAtItsBurnClosure) {
 // 1 % of rho0 beside air is put back at 0.8 rho0, the air takes the volume it gives up, every
 // mass and energy and the cell volume are kept; water (also Mie-Grueneisen) above the floor
 // takes a share by its compressibility V / (rho c^2), far less than the air's; nothing moves
-// when no material is below the floor, or when none could take the volume.
+// when no material is below the floor, or when none could take the volume; with two below the
+// floor the least stretched takes what the other gives.
 TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
   using mp::Real;
   const auto lib = [](const char* name) {
@@ -683,13 +684,25 @@ TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
     EXPECT_EQ(vol[0], Real(0.5));
     EXPECT_EQ(vol[1], Real(0.5));
   }
-  {  // copper and water both below the floor: no material can take the volume
+  {  // copper and water both below the floor (the zone-0.05 perforator's stop: water at 0.797
+     // g/cm3 beside a metal sliver at 3e-7 rho0): the least stretched, the water, keeps its
+     // volume and takes what the copper gives
     const int idw[2] = {0, 2};
-    Real vol[2] = {Real(0.5), Real(0.5)};
-    const Real mass[2] = {Real(0.5 * rho0_cu * 0.5), Real(0.5 * 1.0 * 0.5)};
-    const Real e[2] = {Real(0), Real(0)};
-    EXPECT_FALSE(mp::hydro::solid_floor(2, eos, idw, vol, mass, e, Real(0.8)));
-    EXPECT_EQ(vol[0], Real(0.5));
-    EXPECT_EQ(vol[1], Real(0.5));
+    Real vol[2] = {Real(1.2e-3), Real(0.9988)};
+    const Real mass[2] = {Real(3e-7 * rho0_cu * 1.2e-3), Real(0.797 * 0.9988)};
+    const Real e[2] = {Real(-1), Real(0)};
+    const Real v0[2] = {vol[0], vol[1]};
+    ASSERT_TRUE(mp::hydro::solid_floor(2, eos, idw, vol, mass, e, Real(0.8)));
+    EXPECT_NEAR(mass[0] / vol[0] / (0.8 * rho0_cu), 1.0, roundoff(1e-14));
+    EXPECT_NEAR(double(vol[0]) + vol[1], 1.0, roundoff(1e-15));
+    EXPECT_NEAR(vol[1] - v0[1], v0[0] - vol[0], roundoff(1e-15));
+    EXPECT_NEAR(mass[1] / vol[1], 0.797 * 0.9988, roundoff(1e-6));  // water: 0.797 -> 0.79605
+  }
+  {  // one material below the floor and no other that can take the volume: nothing moves
+    Real vol[1] = {Real(1)};
+    const Real mass[1] = {Real(0.5 * rho0_cu)};
+    const Real e[1] = {Real(0)};
+    EXPECT_FALSE(mp::hydro::solid_floor(1, eos, id, vol, mass, e, Real(0.8)));
+    EXPECT_EQ(vol[0], Real(1));
   }
 }
