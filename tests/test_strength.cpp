@@ -423,6 +423,43 @@ TEST(FlowStress, RecordDispatchAndTemperature) {
   EXPECT_NEAR(st::equivalent_strain_rate(L), 2e-3, 4 * kEps * 2e-3);
 }
 
+// Zerilli-Armstrong (FCC) copper against its closed form written out here with the cited
+// constants (C0 65 MPa, C2 890 MPa, C3 0.0028 /K, C4 0.000115 /K, the rate in 1/s): at eps_p
+// 0.25, 1e4 /s, 400 K, Y = 65 + 445 exp(-1.12 + 0.046 ln 1e4) MPa = 286.8 MPa; the athermal
+// part alone with no plastic strain; no rate softening below 1/s; none at or above melt; the
+// device record dispatches to it with the library's G0.
+TEST(FlowStress, ZerilliArmstrongCopper) {
+  const st::StrengthData* cu = st::find_strength("copper");
+  ASSERT_NE(cu, nullptr);
+  ASSERT_TRUE(cu->has_za);
+  const st::FlowStress za = st::make_flow_stress(*cu, st::kZerilliArmstrong);
+  const double mpa = 1e-5;  // Mbar
+  const auto closed = [&](double eps_p, double rate_per_s, double T) {
+    return (65 +
+            890 * std::sqrt(eps_p) * std::exp(-0.0028 * T + 0.000115 * T * std::log(rate_per_s))) *
+           mpa;
+  };
+  const double y = za.yield_stress(point_state(0.25, 1e-2, 0.01, 1.01, 400));
+  std::printf(
+      "Zerilli-Armstrong copper: eps_p 0.25, 1e4/s, 400 K -> Y %.6g MPa (closed form %.6g)\n",
+      y / mpa, closed(0.25, 1e4, 400) / mpa);
+  EXPECT_NEAR(y, closed(0.25, 1e4, 400), 64 * kEps * y);
+  EXPECT_NEAR(y / mpa, 286.8, 0.1);
+  EXPECT_NEAR(za.yield_stress(point_state(0, 1e-2, 0, 1, 300)), 65 * mpa, 4 * kEps * 65 * mpa);
+  // below the unit rate (1e-3 /s here) the logarithm is clamped at 0: the 1/s value
+  EXPECT_EQ(za.yield_stress(point_state(0.1, 1e-9, 0, 1, 300)),
+            za.yield_stress(point_state(0.1, 1e-6, 0, 1, 300)));
+  EXPECT_NEAR(za.yield_stress(point_state(0.1, 1e-6, 0, 1, 300)), closed(0.1, 1, 300),
+              64 * kEps * closed(0.1, 1, 300));
+  // melted: no strength
+  EXPECT_EQ(za.yield_stress(point_state(0.1, 1e-2, 0, 1, 1356)), 0);
+  EXPECT_EQ(za.shear_modulus(point_state(0.1, 1e-2, 0, 1, 1356)), 0);
+  EXPECT_EQ(za.shear_modulus(point_state(0.1, 1e-2, 0, 1, 1000)), cu->G0);
+  // 4340 has no Zerilli-Armstrong set
+  EXPECT_THROW(st::make_flow_stress(*st::find_strength("steel_4340"), st::kZerilliArmstrong),
+               mp::InputError);
+}
+
 // Every strength entry belongs to an EOS library material; missing sets fail clearly.
 TEST(FlowStress, LibraryNamesAndMissingSets) {
   for (const std::string& name : st::strength_names()) {

@@ -295,6 +295,9 @@ TEST(StrengthCycle, DeckErrorsNameTheKey) {
       {{"materials.0.strength.library=unobtainium"}, "no strength data for 'unobtainium'"},
       {{"materials.0.strength.shear_modulus=-1"}, "materials.0.strength.shear_modulus"},
       {{"materials.0.strength.colour=red"}, "colour"},
+      // Zerilli-Armstrong is cited for copper only
+      {{"materials=[{name: al, library: aluminium_6061, strength: {model: zerilli_armstrong}}]"},
+       "'aluminium_6061' has no Zerilli-Armstrong set in the library"},
       // a multi-material scene reads each material's block (and names the second's key)
       {{"materials=[{name: al, library: aluminium_6061, strength: {model: steinberg_guinan}}, "
         "{name: air, library: air, strength: {model: johnson_cook}}]"},

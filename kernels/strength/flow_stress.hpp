@@ -22,6 +22,11 @@
 //      T_melt(eta) = T_m0 exp(2 a (1 - 1/eta)) eta^(2 (Gamma0 - a - 1/3)),
 //    A = G'_p / G0 (1/Mbar), B = -G'_T / G0 (1/K). The bracket is clamped at 0 (a state so
 //    hot or so far in tension that the linear form would give a negative modulus has none).
+//  - Zerilli-Armstrong, the FCC form (F. J. Zerilli, R. W. Armstrong, J. Appl. Phys. 61 (1987)
+//    1816): Y = C0 + C2 eps_p^(1/2) exp(-C3 T + C4 T ln eps_dot*), eps_dot* = eps_dot / (1/s),
+//    C0 = Delta sigma_G' + k l^(-1/2) the athermal part. Clamp (ours, as for Johnson-Cook):
+//    eps_dot* >= 1. G = G0, constant (the 1987 FCC form has no modulus); Y = G = 0 at or above
+//    T_melt (the form has no melt term: the library gives the material's melting point).
 //  - Temperature: T = T_ref + e / c_v, with e the specific internal energy measured from the
 //    ambient state (e = 0 at T_ref, as the EOS tables take it) and c_v a cited constant. The
 //    cold-compression part of e is not subtracted, so T is overestimated in strong compression
@@ -115,11 +120,28 @@ struct SteinbergGuinan {
   }
 };
 
+struct ZerilliArmstrong {
+  Real C0, C2;    // Mbar
+  Real C3, C4;    // 1/K
+  Real eps_dot0;  // the unit of the rate in the logarithm, 1/s in 1/us
+  Real T_melt;    // K
+  Real G0;        // Mbar (constant shear modulus, not part of the fit)
+
+  KOKKOS_INLINE_FUNCTION Real shear_modulus(Real T) const { return T >= T_melt ? Real(0) : G0; }
+  KOKKOS_INLINE_FUNCTION Real yield_stress(Real eps_p, Real eps_dot, Real T) const {
+    if (T >= T_melt) return 0;
+    if (!(eps_p > 0)) return C0;
+    const Real rate = mlog(mmax(eps_dot / eps_dot0, Real(1)));
+    return C0 + C2 * msqrt(eps_p) * mexp(-C3 * T + C4 * T * rate);
+  }
+};
+
 enum FlowStressKind : int {
   kNoStrength = 0,
   kConstantYield = 1,
   kJohnsonCook = 2,
   kSteinbergGuinan = 3,
+  kZerilliArmstrong = 4,
 };
 
 // The inputs every model may need; each uses the ones it depends on.
@@ -136,6 +158,7 @@ struct FlowStress {
   ConstantYield constant{0, 0};
   JohnsonCook jc{0, 0, 0, 0, 0, 1, 0, 1, 0};
   SteinbergGuinan sg{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+  ZerilliArmstrong za{0, 0, 0, 0, 1, 0, 0};
   Real cv = 0;     // specific heat for the temperature, (cm/us)^2/K
   Real T_ref = 0;  // temperature at e = 0, K
 
@@ -150,6 +173,8 @@ struct FlowStress {
         return jc.shear_modulus(x.T);
       case kSteinbergGuinan:
         return sg.shear_modulus(x.p, x.eta, x.T);
+      case kZerilliArmstrong:
+        return za.shear_modulus(x.T);
       default:
         return 0;
     }
@@ -162,6 +187,8 @@ struct FlowStress {
         return jc.yield_stress(x.eps_p, x.eps_dot, x.T);
       case kSteinbergGuinan:
         return sg.yield_stress(x.eps_p, x.p, x.eta, x.T);
+      case kZerilliArmstrong:
+        return za.yield_stress(x.eps_p, x.eps_dot, x.T);
       default:
         return 0;
     }

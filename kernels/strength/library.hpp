@@ -1,6 +1,6 @@
 // Strength data of the library materials, keyed by the names of the EOS library
-// (kernels/materials/library.cpp): shear modulus, specific heat, Johnson-Cook and
-// Steinberg-Guinan parameters, every value cited. Units: cm, g, us -> Mbar; K
+// (kernels/materials/library.cpp): shear modulus, specific heat, Johnson-Cook,
+// Steinberg-Guinan and Zerilli-Armstrong parameters, every value cited. Units: cm, g, us -> Mbar; K
 // (1 GPa = 0.01 Mbar, 1 MPa = 1e-5 Mbar, 1 J/(kg K) = 1e-8 (cm/us)^2/K, 1/s = 1e-6/us).
 //
 // How each set was read (details and what is missing: docs/materials.md, "Strength"):
@@ -46,6 +46,8 @@ struct StrengthData {
   JohnsonCook jc;    // (jc.G0 = G0)
   bool has_sg;       // Steinberg-Guinan set present
   SteinbergGuinan sg;
+  bool has_za;          // Zerilli-Armstrong set present
+  ZerilliArmstrong za;  // (za.G0 = G0)
   std::string citation;
 };
 
@@ -73,9 +75,21 @@ inline const std::vector<StrengthData>& strength_table() {
        true,
        SteinbergGuinan{Real(0.477), Real(0.0012), Real(0.0064), Real(36), Real(0.45), Real(0),
                        Real(2.83), Real(3.77e-4), Real(1790), Real(2.02), Real(1.5)},
+       // Zerilli & Armstrong 1987, OFHC copper (FCC): Delta sigma_G' 46.5 MPa + k l^-1/2 =
+       // 5 MPa x 3.7 -> C0 65 MPa, C2 890 MPa, C3 0.0028 /K, C4 0.000115 /K, the rate in 1/s;
+       // read in Uintah's copper inputs (src/StandAlone/inputs/MPM/adiCuZA4000s696K.ups and
+       // IMPM/adiCuZA01s296K.ups: sigma_g, k_H, sqrt_l_inv, B_0, alpha_0, alpha_1; ZAFlow.cc
+       // forms c_0 = sigma_g + k_H sqrt_l_inv and cites the 1987 paper) and the older
+       // MaterialData/ZerilliArmstrongPlasticOFHCCopper.xml (c2, c3, c4), B. Banerjee's
+       // transcription. T_melt 1356 K as for the Johnson-Cook set (the form has no melt term).
+       true,
+       ZerilliArmstrong{Real(65e-5), Real(890e-5), Real(0.0028), Real(0.000115), kPerSecond,
+                        Real(1356), Real(0.477)},
        "G0, cv, Steinberg-Guinan: Steinberg UCRL-MA-106439 change 1 (1996), OFHC copper, read in "
        "Uintah SCGMaterials/SCG_CopperOFHC.xml; Johnson-Cook: Johnson & Cook, 7th Int. Symp. "
-       "Ballistics (1983), read in Uintah JohnsonCookPlasticOFHCCopper.xml, T_melt 1356 K"},
+       "Ballistics (1983), read in Uintah JohnsonCookPlasticOFHCCopper.xml, T_melt 1356 K; "
+       "Zerilli-Armstrong: Zerilli & Armstrong, J. Appl. Phys. 61 (1987) 1816, read in Uintah "
+       "adiCuZA*.ups / ZerilliArmstrongPlasticOFHCCopper.xml"},
       {"aluminium_6061",
        // Steinberg UCRL-MA-106439, 6061-T6: G0 27.6 GPa; cv 885 J/(kg K).
        Real(0.276), Real(885) * kJPerKgK, Real(300),
@@ -90,6 +104,7 @@ inline const std::vector<StrengthData>& strength_table() {
        true,
        SteinbergGuinan{Real(0.276), Real(0.0029), Real(0.0068), Real(125), Real(0.10), Real(0),
                        Real(6.52), Real(6.16e-4), Real(1220), Real(1.97), Real(1.5)},
+       false, ZerilliArmstrong{0, 0, 0, 0, 1, 0, 0},
        "G0, cv, Steinberg-Guinan: Steinberg UCRL-MA-106439 change 1 (1996), Al 6061-T6, read in "
        "Uintah SCGMaterials/SCG_Aluminum6061-T6.xml; Johnson-Cook: Lesuer, Kay & LeBlanc "
        "UCRL-JC-134118 (2001), read in Uintah JCPlastic6061T6Al.xml"},
@@ -110,7 +125,8 @@ inline const std::vector<StrengthData>& strength_table() {
        true,
        JohnsonCook{Real(792e-5), Real(510e-5), Real(0.26), Real(0.014), Real(1.03), kPerSecond,
                    Real(298), Real(1793), Real(0.80)},
-       false, SteinbergGuinan{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0},
+       false, SteinbergGuinan{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, false,
+       ZerilliArmstrong{0, 0, 0, 0, 1, 0, 0},
        "G0: ASM/MatWeb datasheet AISI 4340 normalized (M434AE), 80 GPa 'typical for steel'; cv: "
        "Steinberg UCRL-MA-106439 (FronTier mg-eos.c transcription); Johnson-Cook: Johnson & "
        "Cook, 7th Int. Symp. Ballistics (1983), read in Uintah JohnsonCookPlastic4340Steel.xml, "
@@ -130,6 +146,7 @@ inline const std::vector<StrengthData>& strength_table() {
        true,
        SteinbergGuinan{Real(1.60), Real(0.022), Real(0.040), Real(24), Real(0.19), Real(0),
                        Real(0.938), Real(1.38e-4), Real(4520), Real(1.67), Real(1.3)},
+       false, ZerilliArmstrong{0, 0, 0, 0, 1, 0, 0},
        "G0, cv, Steinberg-Guinan: Steinberg UCRL-MA-106439 change 1 (1996), tungsten, read in "
        "Uintah SCGMaterials/SCG_Tungsten.xml; Johnson-Cook: Johnson & Cook (1983) tungsten "
        "alloy, read in Uintah JohnsonCookPlasticW.xml, T_melt 3695 K (Uintah)"},
@@ -171,9 +188,15 @@ inline FlowStress make_flow_stress(const StrengthData& d, FlowStressKind kind) {
       if (!d.has_sg) throw InputError("material '" + d.name + "' has no Steinberg-Guinan set");
       f.sg = d.sg;
       return f;
+    case kZerilliArmstrong:
+      if (!d.has_za) throw InputError("material '" + d.name + "' has no Zerilli-Armstrong set");
+      f.za = d.za;
+      f.za.G0 = d.G0;
+      return f;
     default:
       throw InputError("material '" + d.name +
-                       "': the library holds johnson_cook and steinberg_guinan sets only");
+                       "': the library holds johnson_cook, steinberg_guinan and "
+                       "zerilli_armstrong sets only");
   }
 }
 

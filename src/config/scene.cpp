@@ -128,12 +128,14 @@ const std::vector<std::string> kEosKinds = {"ideal_gas", "stiffened_gas", "mie_g
                                             "polynomial", "jwl"};
 
 // materials[].strength: {model: elastic_plastic, shear_modulus: G, yield: Y} (Mbar), or
-// {model: johnson_cook | steinberg_guinan[, library: name][, shear_modulus: G]} from the cited
-// sets of kernels/strength/library.hpp (library defaults to the material's own library name).
+// {model: johnson_cook | steinberg_guinan | zerilli_armstrong[, library: name][, shear_modulus:
+// G]} from the cited sets of kernels/strength/library.hpp (library defaults to the material's
+// own library name).
 void read_strength(const DeckNode& n, MaterialSpec& spec) {
   n.expect_keys({"model", "library", "shear_modulus", "yield"});
   StrengthSpec& st = spec.strength;
-  st.model = n.get_enum("model", {"elastic_plastic", "johnson_cook", "steinberg_guinan"});
+  st.model = n.get_enum(
+      "model", {"elastic_plastic", "johnson_cook", "steinberg_guinan", "zerilli_armstrong"});
   st.library = n.get_string("library", spec.library);
   const strength::StrengthData* data =
       st.library.empty() ? nullptr : strength::find_strength(st.library);
@@ -163,7 +165,10 @@ void read_strength(const DeckNode& n, MaterialSpec& spec) {
     n.child("model").fail("'" + st.library + "' has no Johnson-Cook set in the library");
   if (st.model == "steinberg_guinan" && !data->has_sg)
     n.child("model").fail("'" + st.library + "' has no Steinberg-Guinan set in the library");
-  if (st.model == "johnson_cook" && !(data->G0 > 0) && !(st.shear_modulus > 0))
+  if (st.model == "zerilli_armstrong" && !data->has_za)
+    n.child("model").fail("'" + st.library + "' has no Zerilli-Armstrong set in the library");
+  if ((st.model == "johnson_cook" || st.model == "zerilli_armstrong") && !(data->G0 > 0) &&
+      !(st.shear_modulus > 0))
     n.fail("'" + st.library + "' has no cited shear modulus: give 'shear_modulus' (Mbar)");
   if (st.model == "steinberg_guinan" && !(spec.rho0 > 0))
     n.fail("steinberg_guinan needs the material's reference density 'rho0'");

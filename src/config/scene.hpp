@@ -13,7 +13,8 @@ namespace mp {
 
 // Strength of a material (materials[].strength; kernels/strength/). model "" means none.
 struct StrengthSpec {
-  std::string model;         // "" | elastic_plastic | johnson_cook | steinberg_guinan
+  std::string model;         // "" | elastic_plastic | johnson_cook | steinberg_guinan |
+                             // zerilli_armstrong
   std::string library;       // strength library entry (kernels/strength/library.hpp)
   double shear_modulus = 0;  // Mbar (0: the library's)
   double yield = 0;          // Mbar, elastic_plastic's constant flow stress
