@@ -651,8 +651,8 @@ TEST(Relaxation, PartlyBurntExplosiveAtItsBurnClosure) {
 // 1 % of rho0 beside air is put back at 0.8 rho0, the air takes the volume it gives up, every
 // mass and energy and the cell volume are kept; water (also Mie-Grueneisen) above the floor
 // takes a share by its compressibility V / (rho c^2), far less than the air's; nothing moves
-// when no material is below the floor, or when none could take the volume; with two below the
-// floor the least stretched takes what the other gives.
+// when no material is below the floor, or when one is and none could take the volume; two below
+// the floor and none above share their volume at equal rho/rho0.
 TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
   using mp::Real;
   const auto lib = [](const char* name) {
@@ -684,19 +684,27 @@ TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
     EXPECT_EQ(vol[0], Real(0.5));
     EXPECT_EQ(vol[1], Real(0.5));
   }
-  {  // copper and water both below the floor (the zone-0.05 perforator's stop: water at 0.797
-     // g/cm3 beside a metal sliver at 3e-7 rho0): the least stretched, the water, keeps its
-     // volume and takes what the copper gives
+  {  // copper and water both below the floor, none above it (the zone-0.05 perforator's stop:
+     // water at 0.797 g/cm3 beside a metal sliver at 3e-7 rho0): they share the volume they
+     // held at equal rho/rho0, the sliver comes back to 0.796 rho0 and the water hardly moves;
+     // and a cell of 90 % copper at 0.5 rho0 with 10 % water at 0.79: both end at 0.529
     const int idw[2] = {0, 2};
-    Real vol[2] = {Real(1.2e-3), Real(0.9988)};
-    const Real mass[2] = {Real(3e-7 * rho0_cu * 1.2e-3), Real(0.797 * 0.9988)};
-    const Real e[2] = {Real(-1), Real(0)};
-    const Real v0[2] = {vol[0], vol[1]};
-    ASSERT_TRUE(mp::hydro::solid_floor(2, eos, idw, vol, mass, e, Real(0.8)));
-    EXPECT_NEAR(mass[0] / vol[0] / (0.8 * rho0_cu), 1.0, roundoff(1e-14));
-    EXPECT_NEAR(double(vol[0]) + vol[1], 1.0, roundoff(1e-15));
-    EXPECT_NEAR(vol[1] - v0[1], v0[0] - vol[0], roundoff(1e-15));
-    EXPECT_NEAR(mass[1] / vol[1], 0.797 * 0.9988, roundoff(1e-6));  // water: 0.797 -> 0.79605
+    const double rho0_w = mp::materials::find_material("water")->rho0;
+    const struct {
+      double f_cu, r_cu, r_w, r_end;
+    } cases[] = {{1.2e-3, 3e-7, 0.797, 0.797 * 0.9988 + 3e-7 * 1.2e-3}, {0.9, 0.5, 0.79, 0.529}};
+    for (const auto& c : cases) {
+      Real vol[2] = {Real(c.f_cu), Real(1 - c.f_cu)};
+      const Real mass[2] = {Real(c.r_cu * rho0_cu * c.f_cu), Real(c.r_w * rho0_w * (1 - c.f_cu))};
+      const Real e[2] = {Real(-1), Real(0)};
+      ASSERT_TRUE(mp::hydro::solid_floor(2, eos, idw, vol, mass, e, Real(0.8)));
+      const double r_cu = mass[0] / vol[0] / rho0_cu, r_w = mass[1] / vol[1] / rho0_w;
+      std::printf("solid floor, both below: copper %.3g -> %.6f rho0, water %.4f -> %.6f rho0\n",
+                  c.r_cu, r_cu, c.r_w, r_w);
+      EXPECT_NEAR(double(vol[0]) + vol[1], 1.0, roundoff(1e-15));
+      EXPECT_NEAR(r_cu, c.r_end, roundoff(1e-13));
+      EXPECT_NEAR(r_w, c.r_end, roundoff(1e-13));
+    }
   }
   {  // one material below the floor and no other that can take the volume: nothing moves
     Real vol[1] = {Real(1)};

@@ -145,8 +145,8 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
 // cell's other materials in proportion to V / (rho c^2) (the soft ones take it, as in the
 // relaxation) with no work done (free expansion into the opened void), so every mass, the cell
 // volume and every material's energy are kept exactly. Nothing moves when no other material can
-// take the volume unless two or more materials are below the floor: then the least stretched
-// of them keeps its volume and takes what the others give. Returns true when volumes changed.
+// take the volume unless two or more materials are below the floor: then those share the
+// volume they held at equal rho/rho0. Returns true when volumes changed.
 KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* id, Real* vol,
                                         const Real* mass, const Real* e, Real rho_floor) {
   constexpr int kMax = 16;
@@ -173,27 +173,26 @@ KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* i
   if (!(give > 0)) return false;
   if (!(den > 0)) {
     // Every material is at the floor or cannot take volume (the zone-0.05 perforator's stop:
-    // water, Mie-Grueneisen too, at 0.797 g/cm3 beside a steel sliver at 3e-7 rho0). The least
-    // stretched floored material (largest rho/rho0 before the floor) keeps its volume and takes
-    // all the others give; with one floored material nothing moves.
-    int best = -1, floored = 0;
-    Real best_r = 0;
+    // water, Mie-Grueneisen too, at 0.797 g/cm3 beside a steel sliver at 3e-7 rho0). With two
+    // or more below the floor they share the volume they held so that each ends at the same
+    // rho/rho0 (equal stretch: the sliver comes back, the water stretches a little); with one
+    // nothing moves.
+    int floored = 0;
+    Real held = 0, need = 0;  // the floored materials' volume, and their sum of mass / rho0
     for (int s = 0; s < n; ++s) {
       if (!(vol[s] < keep[s])) continue;  // not floored
       ++floored;
-      const Real r = mass[s] / (keep[s] * eos[id[s]].params[0]);
-      if (best < 0 || r > best_r) {
-        best = s;
-        best_r = r;
-      }
+      held += keep[s];
+      need += mass[s] / eos[id[s]].params[0];
     }
     if (floored < 2) {
       for (int s = 0; s < n; ++s) vol[s] = keep[s];
       return false;
     }
-    give -= keep[best] - vol[best];
-    vol[best] = keep[best];
-    wgt[best] = den = 1;  // every other weight is 0 here
+    for (int s = 0; s < n; ++s)
+      if (vol[s] < keep[s]) vol[s] = mass[s] / eos[id[s]].params[0] * (held / need);
+    give = 0;
+    den = 1;  // every weight is 0 here: nothing more to share
   }
   Real sum = 0;
   for (int s = 0; s < n; ++s) {
