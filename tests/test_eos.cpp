@@ -706,6 +706,14 @@ TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
       EXPECT_NEAR(r_w, c.r_end, roundoff(1e-13));
     }
   }
+  {  // copper below the floor beside air at e = 0 (c^2 = 0: it cannot take volume): nothing moves
+    Real vol[2] = {Real(0.3), Real(0.7)};
+    const Real mass[2] = {Real(0.5 * rho0_cu * 0.3), Real(1.2e-3 * 0.7)};
+    const Real e[2] = {Real(0), Real(0)};
+    EXPECT_FALSE(mp::hydro::solid_floor(2, eos, id, vol, mass, e, Real(0.8)));
+    EXPECT_EQ(vol[0], Real(0.3));
+    EXPECT_EQ(vol[1], Real(0.7));
+  }
   {  // one material below the floor and no other that can take the volume: nothing moves
     Real vol[1] = {Real(1)};
     const Real mass[1] = {Real(0.5 * rho0_cu)};

@@ -445,6 +445,8 @@ TEST(FlowStress, ZerilliArmstrongCopper) {
       y / mpa, closed(0.25, 1e4, 400) / mpa);
   EXPECT_NEAR(y, closed(0.25, 1e4, 400), 64 * kEps * y);
   EXPECT_NEAR(y / mpa, 286.8, 0.1);
+  // a second hand value: 300 K, 1/s, eps_p 0.25: 65 + 445 exp(-0.84) = 257.1 MPa
+  EXPECT_NEAR(za.yield_stress(point_state(0.25, 1e-6, 0, 1, 300)) / mpa, 257.1, 0.1);
   EXPECT_NEAR(za.yield_stress(point_state(0, 1e-2, 0, 1, 300)), 65 * mpa, 4 * kEps * 65 * mpa);
   // below the unit rate (1e-3 /s here) the logarithm is clamped at 0: the 1/s value
   EXPECT_EQ(za.yield_stress(point_state(0.1, 1e-9, 0, 1, 300)),
@@ -455,9 +457,12 @@ TEST(FlowStress, ZerilliArmstrongCopper) {
   EXPECT_EQ(za.yield_stress(point_state(0.1, 1e-2, 0, 1, 1356)), 0);
   EXPECT_EQ(za.shear_modulus(point_state(0.1, 1e-2, 0, 1, 1356)), 0);
   EXPECT_EQ(za.shear_modulus(point_state(0.1, 1e-2, 0, 1, 1000)), cu->G0);
-  // 4340 has no Zerilli-Armstrong set
+  // 4340 has no Zerilli-Armstrong set; a set without a shear modulus is refused
   EXPECT_THROW(st::make_flow_stress(*st::find_strength("steel_4340"), st::kZerilliArmstrong),
                mp::InputError);
+  st::StrengthData no_g0 = *cu;
+  no_g0.G0 = no_g0.za.G0 = 0;
+  EXPECT_THROW(st::make_flow_stress(no_g0, st::kZerilliArmstrong), mp::InputError);
 }
 
 // Every strength entry belongs to an EOS library material; missing sets fail clearly.

@@ -97,7 +97,8 @@ void check_model(const char* model, double length_bound, double footprint_bound)
   ASSERT_TRUE(fine.ok);
   print(model, kFine, fine);
   // The rod has stopped: at most 1e-3 of the impact's kinetic energy is left (2.5e-4 to 4.2e-4
-  // seen, the elastic ringing of the recovered rod).
+  // seen with Johnson-Cook and Steinberg-Guinan, 8e-5 with Zerilli-Armstrong: the elastic
+  // ringing of the recovered rod).
   EXPECT_LT(fine.ke_left, 1e-3) << model;
   // No copper left the mesh (the box is sized so the rod stays inside) and, at the default
   // min_fraction, none is handed to the air: the copper's mass is kept to round-off (8.8e-15
@@ -105,11 +106,12 @@ void check_model(const char* model, double length_bound, double footprint_bound)
   // the deck's former min_fraction 1e-4, 7.3e-4 to 8.9e-4 went to the air.
   EXPECT_LT(std::abs(fine.cu_lost), test::roundoff(1e-12)) << model;
   // The issue asks for 5 % of the measured length and footprint (the measurement's own
-  // rounding is 0.1-0.3 %, tests/exact/taylor_data.hpp). Not met today (2026-12-01, R/8):
-  // Johnson-Cook L +6.07 %, D +5.45 %; Steinberg-Guinan L +4.60 %, D -5.53 %. The bounds asserted
-  // (the callers') are those errors plus ~1.5 points, the size of the R/6 -> R/8 change (up to
-  // 1.7 points, the footprint), so a regression shows; the 5 % target is printed beside them. What
-  // limits it is in docs/numerics.md, "Taylor anvil".
+  // rounding is 0.1-0.3 %, tests/exact/taylor_data.hpp). Met with Zerilli-Armstrong (R/8 L
+  // +2.93 %, D -1.88 %); not with the other two (2026-12-01, R/8): Johnson-Cook L +6.07 %,
+  // D +5.45 %; Steinberg-Guinan L +4.60 %, D -5.53 %. The bounds asserted (the callers') are
+  // the present errors plus ~1.5 points (~2 for the Zerilli-Armstrong footprint, whose R/6 -> R/8
+  // change is 2.3 points), so a regression shows; the 5 % target is printed beside them. What
+  // limits the other two is in docs/numerics.md, "Taylor anvil".
   const double el = err(fine.shape.length, tx::kLengthFinal);
   const double ed = err(fine.shape.footprint, tx::kFootprintDiameter);
   if (rank0())
@@ -131,8 +133,8 @@ TEST(Taylor, SteinbergGuinanCopperMatchesTheExperiment) {
 }
 
 // Zerilli & Armstrong's (1987) copper, the model its authors checked against these cylinders.
-// Measured 2026-12-02 (1 thread): R/6 L +2.60 %, D -4.14 %; R/8 L +2.93 %, D -1.88 %. The 5 %
-// target is the bound.
+// Measured 2026-12-02 (1 thread, double and float alike): R/6 L +2.60 %, D -4.14 %; R/8 L
+// +2.93 %, D -1.88 %. Bounds: the R/8 errors plus ~1.5 / ~2 points, inside the issue's 5 %.
 TEST(Taylor, ZerilliArmstrongCopperMatchesTheExperiment) {
-  check_model("zerilli_armstrong", 0.05, 0.05);
+  check_model("zerilli_armstrong", 0.045, 0.04);
 }

@@ -25,6 +25,9 @@
 //    UCRL-JC-134118 (LLNL, 2001), read in Uintah's JCPlastic6061T6Al.xml (Uintah's
 //    bibliography cites Lesuer01 for it). The JC paper itself could not be opened here; its
 //    melting and room temperatures were not read (the values below are Uintah's, noted).
+//  - Zerilli-Armstrong (copper only): F. J. Zerilli and R. W. Armstrong, J. Appl. Phys. 61
+//    (1987) 1816, read in B. Banerjee's Uintah copper inputs that cite it (adiCuZA*.ups,
+//    MaterialData/ZerilliArmstrongPlasticOFHCCopper.xml); the paper could not be opened here.
 //  - The 4340 shear modulus: ASM International's MatWeb datasheet for AISI 4340 (normalized),
 //    80 GPa, which the sheet labels "typical for steel" (Steinberg's 4340 row, which would carry
 //    G0 and its derivatives, was not found in a readable transcription).
@@ -190,6 +193,10 @@ inline FlowStress make_flow_stress(const StrengthData& d, FlowStressKind kind) {
       return f;
     case kZerilliArmstrong:
       if (!d.has_za) throw InputError("material '" + d.name + "' has no Zerilli-Armstrong set");
+      if (!(d.G0 > 0)) {
+        throw InputError("material '" + d.name +
+                         "': no cited shear modulus; give strength.shear_modulus in the scene");
+      }
       f.za = d.za;
       f.za.G0 = d.G0;
       return f;

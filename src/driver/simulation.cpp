@@ -244,7 +244,7 @@ strength::FlowStress material_strength(const MaterialSpec& m) {
   }
   // a deck's shear modulus replaces the library's (and stands in where it cites none)
   strength::StrengthData d = *data;
-  if (st.shear_modulus > 0) d.G0 = d.jc.G0 = d.sg.G0 = Real(st.shear_modulus);
+  if (st.shear_modulus > 0) d.G0 = d.jc.G0 = d.sg.G0 = d.za.G0 = Real(st.shear_modulus);
   return strength::make_flow_stress(d, st.model == "johnson_cook" ? strength::kJohnsonCook
                                        : st.model == "zerilli_armstrong"
                                            ? strength::kZerilliArmstrong
