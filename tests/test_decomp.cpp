@@ -18,7 +18,7 @@ struct Fields {
   std::vector<double> rho, e, u, v, w;
   std::vector<std::vector<double>> fractions;  // per material (multi-material scenes)
   std::vector<std::vector<double>> mat_state;  // per material: density, then energy, as stored
-  std::vector<std::vector<double>> strength;   // stress deviator and plastic strain (if any)
+  std::vector<std::vector<double>> strength;   // every stress set's deviator and plastic strain
   std::vector<double> burn;                    // burn fraction (if any)
   long cycles = 0;
 };
@@ -45,11 +45,12 @@ Fields run_on(const Scene& scene, int nranks) {
         for (int which : {1, 2})
           f.mat_state.push_back(test::gather(m, mm->material_field(q, which), Centering::Cell));
       }
-    if (const strength::Strength* st = r.sim->hydro().strength()) {
-      for (const Field3& c : st->stress())
-        f.strength.push_back(test::gather(m, c, Centering::Cell));
-      f.strength.push_back(test::gather(m, st->plastic_strain(), Centering::Cell));
-    }
+    if (const strength::Strength* st = r.sim->hydro().strength())
+      for (int q = 0; q < st->sets(); ++q) {
+        for (const Field3& c : st->set(q).s)
+          f.strength.push_back(test::gather(m, c, Centering::Cell));
+        f.strength.push_back(test::gather(m, st->set(q).eps_p, Centering::Cell));
+      }
     if (const burn::Burn* b = r.sim->hydro().burn())
       f.burn = test::gather(m, b->fraction(), Centering::Cell);
     f.cycles = r.result.cycles;

@@ -19,6 +19,9 @@
 
 namespace mp::hydro {
 
+// Most module carriers a scene can have: one per material with strength, and the explosive.
+constexpr int kMaxCarriers = mat::kMaxMaterials + 1;
+
 // Volume change of cell (i, j, k) in one step: the volumes swept by its six faces (face fluxes
 // stored in node-extent views, face d at index i sitting at node coordinate i along d).
 KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, const Field3& fz,
@@ -112,8 +115,9 @@ struct Options {
   strength::FlowStress strength;
   Real strength_rho0 = 1;
   // Strength of a multi-material scene: one model per material (n == 0, or every kind
-  // kNoStrength, leaves the module out).
+  // kNoStrength, leaves the module out), and the materials' names (the dumps' field suffixes).
   strength::MaterialModels material_strength;
+  std::vector<std::string> material_names;
   // Burn of the explosive (kernels/burn/module.hpp); off unless burn.on. A multi-material scene
   // names the explosive's material id in burn.material.
   burn::BurnSetup burn;
@@ -244,11 +248,12 @@ class Hydro {
   std::unique_ptr<strength::Strength> strength_;
   std::unique_ptr<burn::Burn> burn_;
   // Multi-material scenes with modules: the materials whose mass carries each module's cell
-  // quantities (slot 0 strength: the materials with strength; slot 1 burn: the explosive),
-  // their mass flux through the faces of the sweep (written by the material flux kernel) and
-  // their density (sum alpha_m rho_m over them).
-  unsigned carrier_mask_[2] = {0, 0};
-  Field3 carrier_flux_[2], carrier_rho_[2];
+  // quantities (slots 0 .. sets - 1: the strength module's stress sets, each its own material;
+  // then the burn module's explosive), their mass flux through the faces of the sweep (written
+  // by the material flux kernel) and their density (sum alpha_m rho_m over them).
+  int ncarrier_ = 0, burn_carrier_ = -1;
+  unsigned carrier_mask_[kMaxCarriers] = {};
+  Field3 carrier_flux_[kMaxCarriers], carrier_rho_[kMaxCarriers];
   State s_;
 };
 

@@ -87,8 +87,11 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     if (opt.material_strength.n != mats_.n)
       throw RunError("strength models for " + std::to_string(opt.material_strength.n) +
                      " materials in a scene of " + std::to_string(mats_.n));
-    strength_ = std::make_unique<strength::Strength>(mesh, opt.material_strength, mm_.get());
-    carrier_mask_[0] = opt.material_strength.carriers();
+    strength_ = std::make_unique<strength::Strength>(mesh, opt.material_strength, mm_.get(),
+                                                     opt.material_names);
+    // one carrier per stress set: its own material's mass
+    for (int q = 0; q < strength_->sets(); ++q)
+      carrier_mask_[ncarrier_++] = 1u << strength_->set(q).material;
   }
   if (opt.burn.on) {
     if (!mm_) {
@@ -97,13 +100,14 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
       if (opt.burn.material < 0 || opt.burn.material >= mats_.n)
         throw RunError("burn: the explosive's material id is not set");
       burn_ = std::make_unique<burn::Burn>(mesh, opt.burn, mm_.get());
-      carrier_mask_[1] = 1u << opt.burn.material;
+      burn_carrier_ = ncarrier_;
+      carrier_mask_[ncarrier_++] = 1u << opt.burn.material;
     }
   }
-  for (int c = 0; c < 2; ++c) {
-    if (!carrier_mask_[c]) continue;
-    carrier_flux_[c] = mesh.new_field(std::string("carrier_mass_flux_") + "sb"[c], N);
-    carrier_rho_[c] = mesh.new_field(std::string("carrier_density_") + "sb"[c], Centering::Cell);
+  for (int c = 0; c < ncarrier_; ++c) {
+    const std::string id = std::to_string(c);
+    carrier_flux_[c] = mesh.new_field("carrier_mass_flux_" + id, N);
+    carrier_rho_[c] = mesh.new_field("carrier_density_" + id, Centering::Cell);
   }
 }
 

@@ -235,8 +235,9 @@ struct FaceFluxes {
   int d, nmat, order, iface;
   Real dx, dy, dz;
   // module carriers (hydro.hpp): the summed mass flux of the materials of each mask
-  unsigned cmask[2];
-  Field3 cflux[2];
+  int nc;
+  unsigned cmask[kMaxCarriers];
+  Field3 cflux[kMaxCarriers];
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
     const int sx = d == 0, sy = d == 1, sz = d == 2;
@@ -258,8 +259,8 @@ struct FaceFluxes {
                    e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), smooth ? order : 1, Mm, Em);
         mf(i, j, k) = Mm;
         ef(i, j, k) = Em;
-        for (int c = 0; c < 2; ++c)
-          if (cmask[c]) cflux[c](i, j, k) = ((cmask[c] >> m0) & 1u) ? Real(0) + Mm : Real(0);
+        for (int c = 0; c < nc; ++c)
+          cflux[c](i, j, k) = ((cmask[c] >> m0) & 1u) ? Real(0) + Mm : Real(0);
         return;
       }
     }
@@ -322,8 +323,7 @@ struct FaceFluxes {
       ef(i, j, k) = etot;
     }
     store_face(dev, i, j, k, di, dj, dk, side, V, M, E);
-    for (int c = 0; c < 2; ++c) {
-      if (!cmask[c]) continue;
+    for (int c = 0; c < nc; ++c) {
       Real sum = 0;
       for (int m = 0; m < nmat; ++m)
         if ((cmask[c] >> m) & 1u) sum += M[m];
@@ -563,8 +563,13 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
                      g.dx[0],
                      g.dx[1],
                      g.dx[2],
-                     {carrier_mask_[0], carrier_mask_[1]},
-                     {carrier_flux_[0], carrier_flux_[1]}};
+                     ncarrier_,
+                     {},
+                     {}};
+  for (int c = 0; c < ncarrier_; ++c) {
+    ff.cmask[c] = carrier_mask_[c];
+    ff.cflux[c] = carrier_flux_[c];
+  }
   Kokkos::parallel_for("remap::material_flux",
                        Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}), ff);
 }
@@ -604,25 +609,24 @@ void Hydro::mm_remap_cells(int d) {
 }
 
 void Hydro::mm_carriers() {
-  for (int c = 0; c < 2; ++c)
-    if (carrier_mask_[c]) mm_->carrier_density(carrier_mask_[c], carrier_rho_[c]);
+  for (int c = 0; c < ncarrier_; ++c) mm_->carrier_density(carrier_mask_[c], carrier_rho_[c]);
 }
 
 void Hydro::mm_clear_absent() {
   const int ng = Mesh::ng;
   const auto end = mesh_.owned_end();
   const Policy3 owned({ng, ng, ng}, {end[0], end[1], end[2]});
-  for (int c = 0; c < 2; ++c) {
-    if (!carrier_mask_[c]) continue;
+  for (int c = 0; c < ncarrier_; ++c) {
     struct Fields {
       Field3 f[7];
       int n = 0;
     } fs;
-    if (c == 0 && strength_) {
-      for (const Field3& x : strength_->stress()) fs.f[fs.n++] = x;
-      fs.f[fs.n++] = strength_->plastic_strain();
-    } else if (c == 1 && burn_) {
+    if (c == burn_carrier_) {
       fs.f[fs.n++] = burn_->fraction();
+    } else {
+      const strength::StressSet& st = strength_->set(c);
+      for (const Field3& x : st.s) fs.f[fs.n++] = x;
+      fs.f[fs.n++] = st.eps_p;
     }
     auto crho = carrier_rho_[c];
     mm_->carrier_density(carrier_mask_[c], crho);

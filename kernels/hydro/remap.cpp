@@ -196,12 +196,13 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // the strength module's quantities ride on the same mass fluxes (before rho changes)
   // (a multi-material scene's on its carriers' mass fluxes and densities)
   if (mm_ && (strength_ || burn_)) mm_carriers();
-  if (strength_) {
-    const Carrier c = carrier(0);
-    strength_->remap(axes, c.flux, c.rho, pre, ord);
-  }
+  if (strength_)
+    for (int q = 0; q < strength_->sets(); ++q) {
+      const Carrier c = carrier(q);
+      strength_->remap(q, axes, c.flux, c.rho, pre, ord);
+    }
   if (burn_) {
-    const Carrier c = carrier(1);
+    const Carrier c = carrier(burn_carrier_);
     burn_->remap(axes, c.flux, c.rho, pre, ord);
   }
   auto cell_update = [=] KOKKOS_FUNCTION(int i, int j, int k) {

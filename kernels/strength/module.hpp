@@ -24,17 +24,19 @@
 //    energy), over the owned cells; the halo then fills the ghosts (shear components change sign
 //    under the two reflections that flip them).
 //
-// Multi-material scenes (docs/numerics.md, "Strength in mixed cells"): one deviator and one
-// plastic strain per cell (DESIGN.md §3), those of the cell's solid part — the materials with
-// strength, which share them (equal strain, as the hydro's mixed cells). Their shear modulus
-// and flow stress are the volume-fraction weighted means over those materials, each evaluated
-// at its own state (rho_m, e_m, p_m); the cell's stress on its nodes is the solids' deviator
-// times their volume fraction, so a fluid (no strength) carries none and a cell that is half
-// fluid transmits half the stress; the stress's work goes to the materials with strength, the
-// same specific energy to each; the remap carries the deviator and the plastic strain per unit
-// mass of those materials, with their summed material mass fluxes (the "carrier" of
-// kernels/hydro/hydro.hpp). A single-material scene is the case of fraction 1. Both layouts run
-// the same point functions in material-id order, so they give the same bits.
+// Multi-material scenes (docs/numerics.md, "Strength in mixed cells"): every material with
+// strength has its own deviator and plastic strain (a "stress set", cell fields that hold that
+// material's values where it is present and 0 elsewhere). Each material's deviator advances
+// under the cell's velocity gradient (equal strain, as the hydro's mixed cells) with its own
+// shear modulus and returns to its own yield surface, both from its own flow-stress model at its
+// own state (rho_m, e_m, p_m, its own plastic strain). The cell's stress on its nodes is the
+// volume-fraction weighted sum of its materials' deviators, sum alpha_m s_m, so a fluid (no
+// strength) carries none and a cell that is half fluid transmits half of its solid's stress;
+// each material takes the work of its own part, alpha_m s_m : L V dt, so total energy is kept.
+// The remap carries each material's set per unit mass of that material, with its own material
+// mass flux (the per-material "carriers" of kernels/hydro/hydro.hpp). A single-material scene
+// has one set, the cell's. Both layouts run the same point functions in material-id order, so
+// they give the same bits.
 #pragma once
 #include <array>
 #include <string>
@@ -63,13 +65,22 @@ struct MaterialModels {
   }
 };
 
+// One material's deviator (xx, yy, zz, xy, yz, zx), its half-step value and its equivalent
+// plastic strain, as cell fields; `material` is its material id (-1 in a single-material scene).
+struct StressSet {
+  int material = -1;
+  std::array<Field3, 6> s, s_half;
+  Field3 eps_p;
+};
+
 class Strength {
  public:
   // `rho0` is the material's reference density (the Steinberg–Guinan compression rho/rho0).
   Strength(const Mesh& mesh, const FlowStress& model, Real rho0);
   // A multi-material scene: the per-material state comes from `materials` (owned by the hydro,
-  // it outlives the module).
-  Strength(const Mesh& mesh, const MaterialModels& models, const mat::MaterialState* materials);
+  // it outlives the module); `names` are the materials' names (the dumps' field suffixes).
+  Strength(const Mesh& mesh, const MaterialModels& models, const mat::MaterialState* materials,
+           const std::vector<std::string>& names);
 
   // Adds 4 G / (3 rho) to c^2 (c the EOS sound speed on every cell).
   void stiffen_sound_speed(const Field3& rho, const Field3& e, const Field3& p,
@@ -83,25 +94,39 @@ class Strength {
   // deviator into e.
   void corrector(const Field3& ub, const Field3& vb, const Field3& wb, const Field3& rho,
                  const Field3& e, const Field3& p_half, Real dt);
-  // One remap step over the faces normal to `axes`: every carried quantity per unit mass, with
-  // the cell mass fluxes of the step (owned cells; call before the cell densities change). A
-  // multi-material scene passes the carriers' density and mass fluxes instead of the cell's.
-  void remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
+  // One remap step over the faces normal to `axes` of stress set q: its quantities per unit
+  // mass, with the cell mass fluxes of the step (owned cells; call before the cell densities
+  // change). A multi-material scene passes set q's material's density (alpha_m rho_m) and
+  // material mass fluxes instead of the cell's.
+  void remap(int q, const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
              const Field3& rho, const Field3& pre, int order);
   // The halo fields of the carried quantities (exchanged with the cell fields).
   std::vector<HaloField> halo_fields() const;
+  // The dumps' fields: a single-material scene's stress_xx..zx and plastic_strain; a
+  // multi-material scene's the same with each material's name appended (stress_xx_copper).
   std::vector<OutputField> output_fields() const;
+  // The state a checkpoint keeps: the same fields, a multi-material scene's suffixed by the
+  // material id (as the checkpoint's per-material fields are).
+  std::vector<OutputField> state_fields() const;
 
   // Nodal forces of the half-step deviator (owned nodes), read by the acceleration.
   const std::array<Field3, 3>& force() const { return force_; }
-  const std::array<Field3, 6>& stress() const { return s_; }
-  const Field3& plastic_strain() const { return eps_p_; }
+  // The stress sets: one in a single-material scene, one per material with strength (in
+  // material-id order) in a multi-material scene.
+  int sets() const { return int(sets_.size()); }
+  const StressSet& set(int q) const { return sets_[q]; }
+  // The stress set of material m (multi-material scenes), or -1 when m has no strength.
+  int set_of(int m) const { return m >= 0 && m < mat::kMaxMaterials ? set_of_[m] : -1; }
+  // Set 0's deviator and plastic strain (a single-material scene's).
+  const std::array<Field3, 6>& stress() const { return sets_[0].s; }
+  const Field3& plastic_strain() const { return sets_[0].eps_p; }
   const FlowStress& model() const { return model_; }
   // The multi-material scene's models (n == 0 in a single-material scene).
   const MaterialModels& models() const { return models_; }
 
  private:
   void allocate();
+  StressSet new_set(int material, const std::string& suffix) const;
   void mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const;
   void mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt);
   void mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb, Real dt);
@@ -111,8 +136,12 @@ class Strength {
   Real rho0_;
   MaterialModels models_;
   const mat::MaterialState* mm_ = nullptr;
-  std::array<Field3, 6> s_, s_half_;  // xx, yy, zz, xy, yz, zx
-  Field3 eps_p_;
+  std::vector<std::string> names_;
+  std::vector<StressSet> sets_;
+  int set_of_[mat::kMaxMaterials];
+  // The cell's half-step stress on its nodes (xx, yy, zz, xy, yz, zx): set 0's s_half in a
+  // single-material scene, sum alpha_m s_half_m in a multi-material one.
+  std::array<Field3, 6> cell_half_;
   std::array<Field3, 3> force_;
   Field3 scratch_;  // remap: the carried quantity before the step
 };

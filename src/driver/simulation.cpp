@@ -323,6 +323,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
     opt.material_strength.n = int(scene_.materials.size());
     for (std::size_t m = 0; m < scene_.materials.size(); ++m) {
       const MaterialSpec& ms = scene_.materials[m];
+      opt.material_names.push_back(ms.name);
       opt.material_strength.f[m] = material_strength(ms);
       opt.material_strength.rho0[m] = Real(ms.rho0 > 0 ? ms.rho0 : 1.0);
       if (ms.burn.on) {
@@ -603,12 +604,8 @@ std::vector<OutputField> Simulation::checkpoint_fields() const {
 // strain, the burn fraction (their other fields are derived, or static like lighting times).
 std::vector<OutputField> Simulation::module_state() const {
   std::vector<OutputField> f;
-  if (const strength::Strength* st = hydro_->strength()) {
-    const char* names[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
-    for (int c = 0; c < 6; ++c)
-      f.push_back({std::string("stress_") + names[c], Centering::Cell, st->stress()[c]});
-    f.push_back({"plastic_strain", Centering::Cell, st->plastic_strain()});
-  }
+  if (const strength::Strength* st = hydro_->strength())
+    for (const OutputField& o : st->state_fields()) f.push_back(o);
   if (const burn::Burn* b = hydro_->burn())
     f.push_back({"burn_fraction", Centering::Cell, b->fraction()});
   return f;
