@@ -367,7 +367,12 @@ std::vector<std::string> Simulation::modules() const {
       const strength::FlowStress f = material_strength(mat);
       if (f.kind == strength::kConstantYield)
         os << ", G=" << f.constant.G0 << " Mbar, Y=" << f.constant.Y0 << " Mbar";
-      os << "; Jaumann rate, radial return; fields stress_xx..zx, plastic_strain)";
+      os << "; Jaumann rate, radial return; fields ";
+      if (scene_.materials.size() == 1)
+        os << "stress_xx..zx, plastic_strain)";
+      else  // its own stress set (kernels/strength/module.hpp, "Multi-material scenes")
+        os << "stress_xx_" << mat.name << "..zx_" << mat.name << ", plastic_strain_" << mat.name
+           << ")";
       m.push_back(os.str());
     }
     if (mat.burn.on) {
