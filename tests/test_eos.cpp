@@ -676,6 +676,27 @@ TEST(SolidFloor, PutsAStretchedSolidBackAndTheGasTakesTheVoid) {
     EXPECT_GE(vol[2], v0[2]);
     EXPECT_LT(vol[2] - v0[2], 1e-2 * given);  // observed 0.33 % (V / rho c^2: 2.2 against 670)
   }
+  {  // water below the floor beside a sliver of steel above it (the default perforator at
+     // 42.6 us): the steel takes volume only up to its own floor, the water keeps the rest.
+     // Before the takers were limited, the sliver took all 2 % the water gave and came out at
+     // 1.2e-7 g/cm3, and its Mie-Grueneisen tension (-1.6 Mbar) broke the run.
+    const Eos sw[2] = {lib("water"), lib("steel_4340")};
+    const int ids[2] = {0, 1};
+    const double rho0_w = mp::materials::find_material("water")->rho0;
+    const double rho0_s = mp::materials::find_material("steel_4340")->rho0;
+    Real vol[2] = {Real(1.0 - 3.04e-10), Real(3.04e-10)};
+    const Real mass[2] = {Real(0.7845 * rho0_w * vol[0]), Real(2.287e-9)};
+    const Real e[2] = {Real(1.48e-4), Real(1.95e-3)};
+    ASSERT_TRUE(mp::hydro::solid_floor(2, sw, ids, vol, mass, e, Real(0.8)));
+    const double r_w = mass[0] / vol[0] / rho0_w, r_s = mass[1] / vol[1] / rho0_s;
+    std::printf(
+        "solid floor, water below beside a steel sliver: water 0.7845 -> %.6f rho0, "
+        "steel %.4f -> %.6f rho0\n",
+        r_w, 2.287e-9 / 3.04e-10 / rho0_s, r_s);
+    EXPECT_NEAR(double(vol[0]) + vol[1], 1.0, roundoff(1e-15));
+    EXPECT_NEAR(r_s, 0.8, roundoff(1e-9));  // the sliver stops at its floor
+    EXPECT_NEAR(r_w, 0.7845, 1e-9);         // and the water keeps what it could not give
+  }
   {  // nothing below the floor: nothing moves
     Real vol[2] = {Real(0.5), Real(0.5)};
     const Real mass[2] = {Real(0.9 * rho0_cu * 0.5), Real(1.2e-3 * 0.5)};
