@@ -119,16 +119,19 @@ Health Hydro::check() const {
   // launch over the owned nodes (the owned cells are the nodes below the last layer).
   const int tx = Mesh::ng + mesh_.owned_cells(0), ty = Mesh::ng + mesh_.owned_cells(1),
             tz = Mesh::ng + mesh_.owned_cells(2);
+  const bool several = mm_ != nullptr;
   long first = LONG_MAX;
   Kokkos::parallel_reduce(
       "health::check", mesh_.nodes(Region::Owned),
       KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
         if (i < tx && j < ty && k < tz) {
           const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
-          const long what = !(r > 0) || !misfinite(r)      ? kBadDensity
-                            : !(en >= 0) || !misfinite(en) ? kBadEnergy
-                            : !misfinite(pr)               ? kBadPressure
-                                                           : kNotBad;
+          // (a multi-material scene's energies are checked per material, against each
+          // material's floor: MaterialState::first_bad)
+          const long what = !(r > 0) || !misfinite(r)                    ? kBadDensity
+                            : (!(en >= 0) && !several) || !misfinite(en) ? kBadEnergy
+                            : !misfinite(pr)                             ? kBadPressure
+                                                                         : kNotBad;
           if (what >= 0) {
             const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
             if (key < acc) acc = key;
@@ -205,7 +208,7 @@ Health Hydro::check() const {
     static const char* kWhat[4] = {"density not positive", "density NaN or infinite",
                                    "energy negative", "energy NaN or infinite"};
     h.what = "material " + std::to_string(bad_material) + " " + kWhat[material_what] +
-             " in a mixed cell";
+             (h.m_fraction < 1 ? " in a mixed cell" : "");
     return h;
   }
   const long what = (global_key / 8) % kBadKinds;

@@ -527,18 +527,26 @@ long MaterialState::first_bad(int& material, int& what) const {
         Kokkos::Min<long>(first));
   } else {
     const CompactDev d = compact_;
-    const int ey = ey_, ez = ez_;
+    // one pass over the owned cells: a pure cell's material state is the cell's (checked
+    // against the same floors as in a mixed cell), a mixed cell's are its slots
+    auto crho = rho_, ce = e_;
     Kokkos::parallel_reduce(
-        "matter::check", Policy1(0, d.nmixed),
-        KOKKOS_LAMBDA(int r, long& acc) {
-          const int lin = d.mixed(r);
-          const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
-          if (i < ng || i >= hx || j < ng || j >= hy || k < ng || k >= hz) return;
+        "matter::check", Policy3({ng, ng, ng}, {hx, hy, hz}),
+        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+          const int id = d.mat(i, j, k);
+          const long cell = g.global_cell(i, j, k, nx, ny);
+          if (id >= 0) {
+            const int c = code(id, crho(i, j, k), ce(i, j, k));
+            if (c < 0) return;
+            const long key = (cell * kM + id) * 4 + c;
+            if (key < acc) acc = key;
+            return;
+          }
           const int f = d.first(i, j, k);
           for (int q = f; q < f + d.nm(i, j, k); ++q) {
             const int c = code(d.smat(q), d.srho(q), d.se(q));
             if (c < 0) continue;
-            const long key = (g.global_cell(i, j, k, nx, ny) * kM + d.smat(q)) * 4 + c;
+            const long key = (cell * kM + d.smat(q)) * 4 + c;
             if (key < acc) acc = key;
           }
         },
