@@ -270,8 +270,9 @@ TEST(MultiMaterialModules, TwoSolidsInOneCellYieldOnTheirOwnSurfaces) {
   // each on its own surface where it is loading (the cells by the plastic front: 14 and 25) and
   // never above it; the hard solid far above the soft one's surface everywhere (a shared
   // deviator would give both the same stress)
-  EXPECT_NEAR(vm_hi[0], y_soft, 1e-6 * y_soft);
-  EXPECT_NEAR(vm_hi[1], y_hard, 1e-6 * y_hard);
+  const double tol = test::by_precision(1e-6, 1e-5);  // the radial return's rounding
+  EXPECT_NEAR(vm_hi[0], y_soft, tol * y_soft);
+  EXPECT_NEAR(vm_hi[1], y_hard, tol * y_hard);
   EXPECT_GT(vm_lo[1], 1.5 * y_soft);
   EXPECT_GT(eps_lo[0], 0.0);
   EXPECT_GT(eps_lo[1], 0.0);
