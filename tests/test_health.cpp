@@ -273,6 +273,43 @@ void bad_material_in_mixed_cell(const std::string& layout) {
     if (mine) Kokkos::deep_copy(v, old);
     EXPECT_TRUE(hy.check().ok);
   }
+  // A pure cell of a multi-material scene is checked per material too, against the material's
+  // own energy floor (an ideal gas: 0), in both layouts alike: cell (7,1,0) is test_gas alone.
+  // Its state is the cell's in the compact layout, and also material 1's slot in the dense one.
+  {
+    const std::array<int, 3> pc{7, 1, 0};
+    int pl[3];
+    bool own = true;
+    for (int d = 0; d < 3; ++d) {
+      pl[d] = local_index(m, Centering::Cell, d, pc[d]);
+      own = own && pl[d] >= 0;
+    }
+    Real old_c = 0, old_m = 0;
+    Kokkos::View<Real, MemSpace> cv, mv;
+    if (own) {
+      cv = Kokkos::subview(hy.state().e, pl[0], pl[1], pl[2]);
+      Kokkos::deep_copy(old_c, cv);
+      Kokkos::deep_copy(cv, Real(-1e-3));
+      if (mm->kind() == mat::LayoutKind::Dense) {
+        mv = Kokkos::subview(mm->dense().e, 1, pl[0], pl[1], pl[2]);
+        Kokkos::deep_copy(old_m, mv);
+        Kokkos::deep_copy(mv, Real(-1e-3));
+      }
+    }
+    const hydro::Health h = hy.check();
+    std::printf("  %s: pure cell %s e = -1e-3 -> ok %d, cell %s, '%s'\n", layout.c_str(),
+                cell_text(pc).c_str(), int(h.ok), cell_text(h.cell).c_str(), h.what.c_str());
+    EXPECT_FALSE(h.ok);
+    EXPECT_EQ(h.cell, pc);
+    EXPECT_EQ(h.what, "material 1 energy negative");
+    EXPECT_EQ(h.material, 1);
+    EXPECT_EQ(h.m_fraction, 1.0);
+    if (own) {
+      Kokkos::deep_copy(cv, old_c);
+      if (mv.data()) Kokkos::deep_copy(mv, old_m);
+    }
+    EXPECT_TRUE(hy.check().ok);
+  }
 }
 
 TEST(Health, BadMaterialInMixedCellDense) {

@@ -144,9 +144,12 @@ KOKKOS_INLINE_FUNCTION RelaxResult relax_pressures(int n, const eos::Eos* eos, c
 // mass / (rho_floor rho0) is put back at rho_floor x rho0; the volume it gives up goes to the
 // cell's other materials in proportion to V / (rho c^2) (the soft ones take it, as in the
 // relaxation) with no work done (free expansion into the opened void), so every mass, the cell
-// volume and every material's energy are kept exactly. Nothing moves when no other material can
-// take the volume unless two or more materials are below the floor: then those share the
-// volume they held at equal rho/rho0. Returns true when volumes changed.
+// volume and every material's energy are kept exactly. A Mie-Grueneisen taker stops at its own
+// floor (its share goes to the other takers); what no taker can hold returns to the givers in
+// proportion to what each gave. (The final rescale to the cell volume may leave a capped taker
+// an ulp past its floor; the next call then has it give back that ulp.) Nothing moves when no other
+// material can take the volume unless two or more materials are below the floor: then those share
+// the volume they held at equal rho/rho0. Returns true when volumes changed.
 KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* id, Real* vol,
                                         const Real* mass, const Real* e, Real rho_floor) {
   constexpr int kMax = 16;
@@ -202,7 +205,7 @@ KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* i
   // default perforator's blow-up at 42.6 us). What no taker can hold stays with the materials
   // that gave it, in proportion to what each gave.
   Real left = give;
-  bool full[kMax];
+  bool full[kMax], placed = false;
   for (int s = 0; s < n; ++s) full[s] = false;
   for (int pass = 0; pass < n && left > 0; ++pass) {
     Real d = 0;
@@ -215,14 +218,16 @@ KOKKOS_INLINE_FUNCTION bool solid_floor(int n, const eos::Eos* eos, const int* i
         vol[s] += room[s];
         left -= room[s];
         full[s] = capped = true;
+        placed = placed || room[s] > 0;
       }
     if (capped) continue;  // share what is left again among the others
     for (int s = 0; s < n; ++s)
       if (wgt[s] > 0 && !full[s]) vol[s] += left * (wgt[s] / d);
     left = 0;
+    placed = true;
   }
   if (left > 0) {
-    if (!(left < give)) {  // nothing could be placed: nothing moves
+    if (!placed) {  // nothing could be placed: nothing moves
       for (int s = 0; s < n; ++s) vol[s] = keep[s];
       return false;
     }
