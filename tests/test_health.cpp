@@ -57,16 +57,22 @@ int local_index(const Mesh& m, Centering c, int d, int g) {
   return loc >= r[0] && loc < r[1] ? loc : -1;
 }
 
-// Writes `value` into entry `g` of field f on every rank that owns it; returns the old value
-// (the same on every rank).
-double poke(const Mesh& m, const Field3& f, Centering c, const std::array<int, 3>& g,
-            double value) {
-  int loc[3];
+// Local indices of global entry g in loc; whether this rank owns it.
+bool local_entry(const Mesh& m, Centering c, const std::array<int, 3>& g, int loc[3]) {
   bool mine = true;
   for (int d = 0; d < 3; ++d) {
     loc[d] = local_index(m, c, d, g[d]);
     mine = mine && loc[d] >= 0;
   }
+  return mine;
+}
+
+// Writes `value` into entry `g` of field f on every rank that owns it; returns the old value
+// (the same on every rank).
+double poke(const Mesh& m, const Field3& f, Centering c, const std::array<int, 3>& g,
+            double value) {
+  int loc[3];
+  const bool mine = local_entry(m, c, g, loc);
   double old = -std::numeric_limits<double>::max();
   if (mine) {
     auto e = Kokkos::subview(f, loc[0], loc[1], loc[2]);
@@ -212,11 +218,7 @@ void bad_material_in_mixed_cell(const std::string& layout) {
   ASSERT_NE(mm, nullptr);
   const std::array<int, 3> cell{4, 1, 0};
   int loc[3];
-  bool mine = true;
-  for (int d = 0; d < 3; ++d) {
-    loc[d] = local_index(m, Centering::Cell, d, cell[d]);
-    mine = mine && loc[d] >= 0;
-  }
+  const bool mine = local_entry(m, Centering::Cell, cell, loc);
   // the material's density and energy entries of that cell, on the owning rank
   auto entry = [&](int mat, bool energy) -> Kokkos::View<Real, MemSpace> {
     if (mm->kind() == mat::LayoutKind::Dense) {
@@ -279,17 +281,11 @@ void bad_material_in_mixed_cell(const std::string& layout) {
   {
     const std::array<int, 3> pc{7, 1, 0};
     int pl[3];
-    bool own = true;
-    for (int d = 0; d < 3; ++d) {
-      pl[d] = local_index(m, Centering::Cell, d, pc[d]);
-      own = own && pl[d] >= 0;
-    }
-    Real old_c = 0, old_m = 0;
-    Kokkos::View<Real, MemSpace> cv, mv;
+    const bool own = local_entry(m, Centering::Cell, pc, pl);
+    const double old_c = poke(m, hy.state().e, Centering::Cell, pc, -1e-3);
+    Real old_m = 0;
+    Kokkos::View<Real, MemSpace> mv;
     if (own) {
-      cv = Kokkos::subview(hy.state().e, pl[0], pl[1], pl[2]);
-      Kokkos::deep_copy(old_c, cv);
-      Kokkos::deep_copy(cv, Real(-1e-3));
       if (mm->kind() == mat::LayoutKind::Dense) {
         mv = Kokkos::subview(mm->dense().e, 1, pl[0], pl[1], pl[2]);
         Kokkos::deep_copy(old_m, mv);
@@ -304,10 +300,8 @@ void bad_material_in_mixed_cell(const std::string& layout) {
     EXPECT_EQ(h.what, "material 1 energy negative");
     EXPECT_EQ(h.material, 1);
     EXPECT_EQ(h.m_fraction, 1.0);
-    if (own) {
-      Kokkos::deep_copy(cv, old_c);
-      if (mv.data()) Kokkos::deep_copy(mv, old_m);
-    }
+    poke(m, hy.state().e, Centering::Cell, pc, old_c);
+    if (own && mv.data()) Kokkos::deep_copy(mv, old_m);
     EXPECT_TRUE(hy.check().ok);
   }
 }
