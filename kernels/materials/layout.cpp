@@ -14,8 +14,10 @@ namespace {
 // The material halo fills the ghosts axis by axis (x, then y, then z), so that edge and corner
 // ghosts come through the face neighbours. HaloSource<Dev> is the content of a cell after the
 // first `done` sweeps, computed from the received messages without storing anything: a cell in
-// a ghost slab of sweep d took its content from that sweep's message (neighbour rank) or from
-// its mirror / wall cell (physical boundary) as that cell stood after sweep d-1; every other cell
+// a ghost slab of sweep d took its content from that sweep's message (neighbour rank), from
+// its mirror / wall cell (physical boundary) or from the owned cell one block-length away (a
+// periodic axis this rank holds alone: no message to itself, as the field halo's Self sides)
+// as that cell stood after sweep d-1; every other cell
 // kept its content. Walking back through the sweeps gives each ghost exactly the content that a
 // pool rebuild after every sweep would have stored, so one update per exchange suffices (in
 // place where no ghost's materials change, else one rebuild; MaterialState::assign).
@@ -28,7 +30,9 @@ struct HaloSource {
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
   int ext[3], nl[3];
-  int mode[3][2];  // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow
+  // per sweep and side: 0 neighbour rank, 1 reflective, 2 outflow, 3 this rank (a periodic axis
+  // held by one rank: the ghost is the owned cell nl layers away, with no message)
+  int mode[3][2];
   // per sweep and side: the message received (the ng layers next to the face): per cell a head
   // of 3 values, then the records of the cells that are not pure, only of the materials present
   // (alpha, rho, e each, in material order). A pure cell's head is -(id + 1), rho, e; any
@@ -62,6 +66,14 @@ struct HaloSource {
     if (x >= ng + nl[d]) return 1;
     return -1;
   }
+  // The cell along d whose content (after sweep d-1) ghost x of side s copies, for a side
+  // without a message: the mirror across the face (reflective), the wall cell (outflow), or the
+  // owned cell nl layers away (periodic on this rank; what the message to itself would carry).
+  KOKKOS_INLINE_FUNCTION int source_index(int d, int s, int x) const {
+    if (mode[d][s] == 1) return s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;
+    if (mode[d][s] == 3) return s == 0 ? x + nl[d] : x - nl[d];
+    return s == 0 ? ng : ng + nl[d] - 1;
+  }
   KOKKOS_INLINE_FUNCTION bool changed(int i, int j, int k) const {
     const int idx[3] = {i, j, k};
     for (int d = 0; d < done; ++d)
@@ -89,10 +101,7 @@ struct HaloSource {
         en = b(o + 2);
         return true;
       }
-      if (mode[d][s] == 1)
-        idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;
-      else
-        idx[d] = s == 0 ? ng : ng + nl[d] - 1;
+      idx[d] = source_index(d, s, x);
     }
     return stored_pure(idx[0], idx[1], idx[2], id, r, en);
   }
@@ -128,11 +137,8 @@ struct HaloSource {
         }
         return cnt;
       }
-      // a boundary ghost copied the content its source cell had after sweep d-1
-      if (mode[d][s] == 1)
-        idx[d] = s == 0 ? 2 * ng - 1 - x : 2 * (ng + nl[d]) - 1 - x;  // mirror across the face
-      else
-        idx[d] = s == 0 ? ng : ng + nl[d] - 1;  // the wall cell
+      // a boundary or periodic ghost copied the content its source cell had after sweep d-1
+      idx[d] = source_index(d, s, x);
     }
     return read(idx[0], idx[1], idx[2], a, r, en);  // as stored before the exchange
   }
@@ -254,7 +260,8 @@ void MaterialState::exchange() {
   }
   for (int s = 0; s < 2; ++s) {
     bool neighbour = false;
-    for (int d = 0; d < 3; ++d) neighbour = neighbour || !mesh_.physical_boundary(d, s);
+    for (int d = 0; d < 3; ++d)
+      neighbour = neighbour || (!mesh_.physical_boundary(d, s) && mesh_.neighbor(d, s) != mesh_.rank());
     if (neighbour && long(send_[s].extent(0)) < largest)
       send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), largest);
   }
@@ -270,6 +277,10 @@ void MaterialState::exchange() {
       for (int s = 0; s < 2; ++s) {
         if (mesh_.physical_boundary(d, s)) {
           src.mode[d][s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
+          continue;
+        }
+        if (mesh_.neighbor(d, s) == mesh_.rank()) {  // periodic, held by this rank alone
+          src.mode[d][s] = 3;
           continue;
         }
         any = true;
