@@ -210,4 +210,41 @@ TEST(MaterialHalo, MixedWallsAndPeriodic) {
   check(Bc{{{{kR, kO}}, {{kO, kR}}, {{kP, kP}}}}, "reflective/outflow, periodic z");
 }
 
+// Every axis periodic: at one rank each is held by this rank alone and its ghosts are copied
+// from the owned cells with no message (mode "this rank" of the material halo); at 2 and 4 ranks
+// the split axes send messages and the others do not.
+TEST(MaterialHalo, AllPeriodic) {
+  check(Bc{{{{kP, kP}}, {{kP, kP}}, {{kP, kP}}}}, "periodic x, y, z");
+}
+
+// The ghost shell the halo's in-place update runs over (mat::shell_cell) visits every cell with
+// an index in the ng layers of some side exactly once, and no other cell.
+TEST(MaterialHalo, GhostShellEnumeration) {
+  const int ng = Mesh::ng;
+  for (const std::array<int, 3>& ext :
+       {std::array<int, 3>{6, 7, 8}, std::array<int, 3>{2 * ng + 1, 9, 2 * ng + 3},
+        std::array<int, 3>{11, 2 * ng + 1, 5}}) {
+    const int ex = ext[0], ey = ext[1], ez = ext[2];
+    std::vector<int> seen(std::size_t(ex) * ey * ez, 0);
+    const long n = mat::shell_cells(ex, ey, ez, ng);
+    for (long r = 0; r < n; ++r) {
+      int i = -1, j = -1, k = -1;
+      mat::shell_cell(r, ex, ey, ez, ng, i, j, k);
+      ASSERT_TRUE(i >= 0 && i < ex && j >= 0 && j < ey && k >= 0 && k < ez) << r;
+      ++seen[(std::size_t(i) * ey + j) * ez + k];
+    }
+    long ghosts = 0;
+    for (int i = 0; i < ex; ++i)
+      for (int j = 0; j < ey; ++j)
+        for (int k = 0; k < ez; ++k) {
+          auto g = [&](int x, int e) { return x < ng || x >= e - ng; };
+          const bool ghost = g(i, ex) || g(j, ey) || g(k, ez);
+          ghosts += ghost;
+          EXPECT_EQ(seen[(std::size_t(i) * ey + j) * ez + k], ghost ? 1 : 0)
+              << ex << "x" << ey << "x" << ez << " cell " << i << "," << j << "," << k;
+        }
+    EXPECT_EQ(n, ghosts);
+  }
+}
+
 }  // namespace

@@ -26,6 +26,7 @@ struct HaloSource {
   // a ghost's content comes from owned cells (never changed here) and the messages, so ghosts
   // may be written where they are (the dense layout always does)
   static constexpr bool in_place = true;
+  static constexpr bool ghosts_only = true;  // changed() holds for ghost cells only
   Dev dev;
   Field3 rho, e;  // cell arrays (compact reads pure cells from them)
   int ng, nmat, done;
@@ -261,7 +262,8 @@ void MaterialState::exchange() {
   for (int s = 0; s < 2; ++s) {
     bool neighbour = false;
     for (int d = 0; d < 3; ++d)
-      neighbour = neighbour || (!mesh_.physical_boundary(d, s) && mesh_.neighbor(d, s) != mesh_.rank());
+      neighbour =
+          neighbour || (!mesh_.physical_boundary(d, s) && mesh_.neighbor(d, s) != mesh_.rank());
     if (neighbour && long(send_[s].extent(0)) < largest)
       send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), largest);
   }

@@ -348,6 +348,48 @@ template <class S>
 struct HasPure<S, std::void_t<decltype(S::has_pure)>> : std::integral_constant<bool, S::has_pure> {
 };
 
+// A source whose changed cells are all ghosts (the halo) declares
+//   static constexpr bool ghosts_only = true;
+// The in-place pass then runs over the ghost shell of the block (the ng layers on each side of
+// every axis) instead of the whole block.
+template <class S, class = void>
+struct GhostsOnly : std::false_type {};
+template <class S>
+struct GhostsOnly<S, std::void_t<decltype(S::ghosts_only)>>
+    : std::integral_constant<bool, S::ghosts_only> {};
+
+// Cell r of the ghost shell of an ex x ey x ez block with ng ghost layers: first the two x slabs
+// (whole y, z extent), then the two y slabs of the interior x, then the two z slabs of the
+// interior x and y; k fastest in each.
+KOKKOS_INLINE_FUNCTION void shell_cell(long r, int ex, int ey, int ez, int ng, int& i, int& j,
+                                       int& k) {
+  const int ix = ex - 2 * ng, iy = ey - 2 * ng;
+  const long nx = long(2 * ng) * ey * ez, ny = long(ix) * 2 * ng * ez;
+  if (r < nx) {
+    const int a = int(r / (long(ey) * ez));
+    i = a < ng ? a : ex - 2 * ng + a;
+    j = int((r / ez) % ey);
+    k = int(r % ez);
+    return;
+  }
+  r -= nx;
+  if (r < ny) {
+    const int b = int((r / ez) % (2 * ng));
+    i = ng + int(r / (long(2 * ng) * ez));
+    j = b < ng ? b : ey - 2 * ng + b;
+    k = int(r % ez);
+    return;
+  }
+  r -= ny;
+  const int c = int(r % (2 * ng));
+  i = ng + int(r / (long(iy) * 2 * ng));
+  j = ng + int((r / (2 * ng)) % iy);
+  k = c < ng ? c : ez - 2 * ng + c;
+}
+KOKKOS_INLINE_FUNCTION long shell_cells(int ex, int ey, int ez, int ng) {
+  return long(ex) * ey * ez - long(ex - 2 * ng) * (ey - 2 * ng) * (ez - 2 * ng);
+}
+
 // A changed cell's new content from the source; returns the count of materials present and
 // sets `id` to the last of them (0 for none).
 template <class Source>
@@ -405,55 +447,66 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   auto stamp = stamp_;
   if constexpr (InPlace<Source>::value) {
     long moved = 0;
-    Kokkos::parallel_reduce(
-        name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}),
-        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-          if (!src.changed(i, j, k)) return;
-          if constexpr (HasPure<Source>::value) {
-            int pid = -1;
-            Real pr = 0, pe = 0;
-            if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) &&
-                pid == old.mat(i, j, k)) {
-              crho(i, j, k) = pr;  // (cell_average of one material: its own values)
-              ce(i, j, k) = pe;
-              stamp(i, j, k) = 1;
-              return;
-            }
-          }
-          Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-          int id = 0;
-          const int n = new_content(src, i, j, k, nmat, a, r, en, id);
-          // The same materials in the same slots: a neighbour's content may read this cell's
-          // layout (the remap reads the donor's material ids to split its face fluxes), so only
-          // values change here, never which material a pure cell or a slot holds.
-          const int om = old.mat(i, j, k), onm = old.nm(i, j, k);
-          bool same = onm == n && (om >= 0) == (n <= 1);
-          if (same && om >= 0) {
-            same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
-          } else if (same) {
-            int q = old.first(i, j, k);
-            for (int m = 0; m < nmat && same; ++m)
-              if (a[m] > 0) same = old.smat(q++) == m;
-          }
-          if (same && om < 0) {
-            int q = old.first(i, j, k);
-            for (int m = 0; m < nmat; ++m) {
-              if (!(a[m] > 0)) continue;
-              old.salpha(q) = a[m];
-              old.srho(q) = r[m];
-              old.se(q) = en[m];
-              old.sp(q) = 0;
-              ++q;
-            }
-          } else if (!same) {
-            stamp(i, j, k) = 0;
-            ++acc;  // the layout changes here: left to the rebuild
-            return;
-          }
-          cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+    auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      if (!src.changed(i, j, k)) return;
+      if constexpr (HasPure<Source>::value) {
+        int pid = -1;
+        Real pr = 0, pe = 0;
+        if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) && pid == old.mat(i, j, k)) {
+          crho(i, j, k) = pr;  // (cell_average of one material: its own values)
+          ce(i, j, k) = pe;
           stamp(i, j, k) = 1;
-        },
-        moved);
+          return;
+        }
+      }
+      Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+      int id = 0;
+      const int n = new_content(src, i, j, k, nmat, a, r, en, id);
+      // The same materials in the same slots: a neighbour's content may read this cell's
+      // layout (the remap reads the donor's material ids to split its face fluxes), so only
+      // values change here, never which material a pure cell or a slot holds.
+      const int om = old.mat(i, j, k), onm = old.nm(i, j, k);
+      bool same = onm == n && (om >= 0) == (n <= 1);
+      if (same && om >= 0) {
+        same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
+      } else if (same) {
+        int q = old.first(i, j, k);
+        for (int m = 0; m < nmat && same; ++m)
+          if (a[m] > 0) same = old.smat(q++) == m;
+      }
+      if (same && om < 0) {
+        int q = old.first(i, j, k);
+        for (int m = 0; m < nmat; ++m) {
+          if (!(a[m] > 0)) continue;
+          old.salpha(q) = a[m];
+          old.srho(q) = r[m];
+          old.se(q) = en[m];
+          old.sp(q) = 0;
+          ++q;
+        }
+      } else if (!same) {
+        stamp(i, j, k) = 0;
+        ++acc;  // the layout changes here: left to the rebuild
+        return;
+      }
+      cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+      stamp(i, j, k) = 1;
+    };
+    if constexpr (GhostsOnly<Source>::value) {
+      const int ex = ex_, ng = Mesh::ng;
+      Kokkos::parallel_reduce(
+          name + "::in_place",
+          Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, shell_cells(ex, ey, ez, ng)),
+          KOKKOS_LAMBDA(long r, long& acc) {
+            int i, j, k;
+            shell_cell(r, ex, ey, ez, ng, i, j, k);
+            in_place(i, j, k, acc);
+          },
+          moved);
+    } else {
+      Kokkos::parallel_reduce(name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}), in_place,
+                              moved);
+    }
     if (moved == 0) return;
   }
   // Changed and not yet written in place (every changed cell's stamp was written above).
