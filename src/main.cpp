@@ -68,6 +68,10 @@ int main(int argc, char** argv) {
     app.add_option("--restart", cl.restart,
                    "continue from a checkpoint: a path, or 'latest' (the newest in the output "
                    "directory)");
+    app.add_option("--restart-allow", cl.restart_allow,
+                   "with --restart: a numerics.* or time.* deck key (or a prefix ending in "
+                   "'.*') that may differ from the checkpoint's deck; each change is logged and "
+                   "kept in summary.json (repeatable)");
     app.add_flag("--overwrite", cl.overwrite,
                  "replace an earlier run's files (summary.json, *.xmf, *.h5) in the output "
                  "directory instead of refusing to mix runs");

@@ -209,6 +209,14 @@ TEST_F(Cli, BadOverridesExit2AndWriteNothing) {
   expect_rejected({"good.yaml", "--set", "mesh.cells"}, {"--set mesh.cells", "key=value"});
 }
 
+TEST_F(Cli, BadRestartAllowExit2AndWriteNothing) {
+  write("good.yaml", deck());
+  expect_rejected({"good.yaml", "--restart", "latest", "--restart-allow", "mesh.zone"},
+                  {"--restart-allow mesh.zone: only numerics.* and time.* keys"});
+  expect_rejected({"good.yaml", "--restart-allow", "numerics.*"},
+                  {"--restart-allow needs --restart"});
+}
+
 TEST_F(Cli, GoodRunWritesDumpsAndSummary) {
   const std::string sod = source_dir() + "/configs/sod_x.yaml";
   const Result r =

@@ -300,6 +300,57 @@ TEST(RestartRefusal, AnotherDeckIsRefusedNamingTheKey) {
   }
 }
 
+// --restart-allow: a numerics.* or time.* key may differ when named, and the change is kept in
+// the run's result; one not named is still refused. Changing the layout from compact to dense
+// continues the same solution, bit for bit (the layouts agree bitwise).
+TEST(RestartRefusal, AllowedKeysAreKeptAndTheRunGoesOn) {
+  SharedDir dir;
+  const Case c = triple_point("compact");
+  const std::string ckpt = run_to_checkpoint(c, 5, MPI_COMM_WORLD, dir.path);
+  const std::string layout_line = "numerics.layout: 'compact' in the checkpoint, 'dense' here";
+  {
+    auto d = deck("dense");
+    d.push_back("time.cfl=0.4");
+    RunSettings settings;
+    settings.quiet = true;
+    settings.restart_allow = {"time.*"};
+    Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+    try {
+      sim.restart(ckpt);
+      ADD_FAILURE() << "a key outside --restart-allow was accepted";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(layout_line), std::string::npos) << msg;
+      EXPECT_EQ(msg.find("time.cfl"), std::string::npos) << "an allowed key refused: " << msg;
+      EXPECT_NE(msg.find("1 difference;"), std::string::npos) << msg;
+    }
+  }
+  const Snapshot straight = straight_run(c);
+  RunSettings settings;
+  settings.quiet = true;
+  settings.restart_allow = {"numerics.*"};
+  Simulation sim(test::load_scene("triple_point.yaml", deck("dense")), MPI_COMM_WORLD, settings);
+  sim.restart(ckpt);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.ok);
+  EXPECT_EQ(r.ending, Ending::EndTime);
+  ASSERT_EQ(r.restart_changes.size(), 1u);
+  EXPECT_EQ(r.restart_changes[0], layout_line);
+  expect_identical(straight, snapshot(sim), "compact -> dense restart");
+}
+
+TEST(RestartRefusal, AllowPatternsOnlyForNumericsAndTime) {
+  for (const char* ok : {"numerics.*", "numerics.ke_fix", "time.*", "time.cfl"})
+    EXPECT_EQ(restart_allow_error(ok), "") << ok;
+  for (const char* bad : {"mesh.zone", "materials.*", "regions.0.density", "numerics*", "*",
+                          "numerics.", "time.c*", ""}) {
+    const std::string why = restart_allow_error(bad);
+    EXPECT_NE(why.find("--restart-allow " + std::string(bad) + ": only numerics.* and time.*"),
+              std::string::npos)
+        << "'" << bad << "': " << why;
+  }
+}
+
 TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
   SharedDir dir;
   const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);

@@ -169,6 +169,13 @@ int run(const CommandLine& cl) {
     settings.output_dir = cl.output.empty() ? scene.output.dir : cl.output;
     settings.quiet = cl.quiet;
     settings.watch_signals = true;
+    if (!cl.restart_allow.empty() && cl.restart.empty())
+      throw InputError("--restart-allow needs --restart");
+    for (const std::string& p : cl.restart_allow) {
+      const std::string why = restart_allow_error(p);
+      if (!why.empty()) throw InputError(why);
+    }
+    settings.restart_allow = cl.restart_allow;
     check_output_path(settings.output_dir, scene);
 
     // Memory up front: estimate, compare with what the node has, before allocating.

@@ -12,6 +12,7 @@ struct CommandLine {
   bool quiet = false;
   bool check_only = false;
   std::string restart;  // checkpoint path, or "latest" (newest in the output directory)
+  std::vector<std::string> restart_allow;  // deck keys the restart may change (RunSettings)
   bool overwrite = false;
 };
 

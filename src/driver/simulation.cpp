@@ -624,6 +624,18 @@ const char* real_name() {
 
 // Deck keys a restart may change: where and how often output goes, how far the run goes, how
 // the ranks split the mesh, the free text.
+// Does `key` match one of the --restart-allow patterns (an exact key, or "prefix.*")?
+bool allowed_by(const std::vector<std::string>& patterns, const std::string& key) {
+  for (const std::string& p : patterns) {
+    if (p.size() >= 2 && p.compare(p.size() - 2, 2, ".*") == 0) {
+      if (key.compare(0, p.size() - 1, p, 0, p.size() - 1) == 0) return true;
+    } else if (key == p) {
+      return true;
+    }
+  }
+  return false;
+}
+
 bool restart_may_change(const std::string& key) {
   return key.rfind("output.", 0) == 0 || key == "output" || key == "time.end" ||
          key == "time.max_cycles" || key.rfind("mesh.ranks", 0) == 0 || key == "description";
@@ -670,6 +682,18 @@ struct RestoreSource {
 };
 
 }  // namespace
+
+std::string restart_allow_error(const std::string& pattern) {
+  const bool wildcard = pattern.size() >= 2 && pattern.compare(pattern.size() - 2, 2, ".*") == 0;
+  const std::string stem = wildcard ? pattern.substr(0, pattern.size() - 2) : pattern;
+  const bool scoped = stem == "numerics" || stem == "time" || stem.rfind("numerics.", 0) == 0 ||
+                      stem.rfind("time.", 0) == 0;
+  if (scoped && stem.find('*') == std::string::npos && stem.back() != '.') return "";
+  return "--restart-allow " + pattern +
+         ": only numerics.* and time.* keys (an exact key, or a prefix ending in '.*') may "
+         "change on a restart; the mesh, materials and regions define what the checkpoint's "
+         "state means";
+}
 
 std::string Simulation::checkpoint_meta() const {
   nlohmann::json deck = nlohmann::json::object();
@@ -732,8 +756,14 @@ void Simulation::restart(const std::string& path) {
       there[it.key()] = it.value().is_string() ? it.value().get<std::string>() : it.value().dump();
   std::string diff;
   int ndiff = 0;
+  restart_changes_.clear();
   auto note = [&](const std::string& k, const std::string& a, const std::string& b) {
-    if (++ndiff <= 6) diff += "\n  " + k + ": " + a + " in the checkpoint, " + b + " here";
+    const std::string line = k + ": " + a + " in the checkpoint, " + b + " here";
+    if (allowed_by(settings_.restart_allow, k)) {
+      restart_changes_.push_back(line);
+      return;
+    }
+    if (++ndiff <= 6) diff += "\n  " + line;
   };
   for (const auto& [k, v] : there) {
     const auto it = here.find(k);
@@ -748,8 +778,10 @@ void Simulation::restart(const std::string& path) {
     throw InputError("checkpoint " + path + " was written for another deck (" +
                      std::to_string(ndiff) + " difference" + (ndiff > 1 ? "s" : "") +
                      "; only output.*, time.end, time.max_cycles, mesh.ranks and description "
-                     "may change on a restart):" +
+                     "may change on a restart, and numerics.* or time.* keys named by "
+                     "--restart-allow):" +
                      diff);
+  for (const std::string& c : restart_changes_) log_line("  restart changes " + c);
 
   // Fields: cell and node state straight into the hydro's arrays; per-material state through
   // the layout's own rebuild, then the cell averages as they were (a mixed cell's average is
@@ -871,6 +903,7 @@ RunResult Simulation::run() {
   RunResult r;
   r.first_cycle = cycle_;
   r.restarted_from = restarted_from_;
+  r.restart_changes = restart_changes_;
   if (!restarted_) {
     start_ = hydro_->totals();
     t_ = 0;
@@ -1054,6 +1087,7 @@ std::string Simulation::summary_json(const RunResult& r) const {
   if (!r.restarted_from.empty()) {
     js["restarted_from"] = r.restarted_from;
     js["restart_cycle"] = r.first_cycle;
+    js["restart_changes"] = r.restart_changes;
   }
   if (!r.ok) {
     const auto& h = r.health;

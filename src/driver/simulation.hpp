@@ -16,7 +16,16 @@ struct RunSettings {
   bool quiet = false;      // no per-cycle log lines
   // Stop after the current cycle when a SIGTERM/SIGINT arrived (signals.hpp); all ranks agree.
   bool watch_signals = false;
+  // Deck keys a restart may change besides output.*, time.end, time.max_cycles, mesh.ranks and
+  // description: exact keys, or prefixes ending in ".*" ("numerics.*"); only numerics.* and
+  // time.* keys are accepted (restart_allow_error). Each change is logged and kept in
+  // summary.json ("restart_changes").
+  std::vector<std::string> restart_allow;
 };
+
+// Why a --restart-allow pattern is refused (a key outside numerics.* and time.*, which shape
+// what the checkpoint's state means), or "" when it is accepted.
+std::string restart_allow_error(const std::string& pattern);
 
 // What ended a run.
 enum class Ending { EndTime, MaxCycles, Interrupted, NonPhysical };
@@ -36,8 +45,10 @@ struct RunResult {
   std::vector<std::string> files;
   std::vector<std::string> checkpoints;  // written by this run
   std::string restarted_from;            // checkpoint path, or empty
-  long first_cycle = 0;                  // cycle this process started at (restart: > 0)
-  std::string output_error;              // a dump or checkpoint that could not be written
+  // deck keys this restart changed (--restart-allow): "key: 'old' in the checkpoint, 'new' here"
+  std::vector<std::string> restart_changes;
+  long first_cycle = 0;      // cycle this process started at (restart: > 0)
+  std::string output_error;  // a dump or checkpoint that could not be written
 };
 
 class Simulation {
@@ -91,6 +102,7 @@ class Simulation {
   long cycle_ = 0;
   Real dt_old_ = 0;
   hydro::Totals start_;
+  std::vector<std::string> restart_changes_;
   bool restarted_ = false;
   std::string restarted_from_;
   std::vector<std::string> files_;
