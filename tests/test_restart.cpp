@@ -328,7 +328,7 @@ TEST(RestartRefusal, AllowedKeysAreKeptAndTheRunGoesOn) {
   const Snapshot straight = straight_run(c);
   RunSettings settings;
   settings.quiet = true;
-  settings.restart_allow = {"numerics.*"};
+  settings.restart_allow = {"numerics.layout"};  // an exact key (the refusal above: a prefix)
   Simulation sim(test::load_scene("triple_point.yaml", deck("dense")), MPI_COMM_WORLD, settings);
   sim.restart(ckpt);
   const RunResult r = sim.run();
@@ -343,7 +343,7 @@ TEST(RestartRefusal, AllowPatternsOnlyForNumericsAndTime) {
   for (const char* ok : {"numerics.*", "numerics.ke_fix", "time.*", "time.cfl"})
     EXPECT_EQ(restart_allow_error(ok), "") << ok;
   for (const char* bad : {"mesh.zone", "materials.*", "regions.0.density", "numerics*", "*",
-                          "numerics.", "time.c*", ""}) {
+                          "numerics.", "time.c*", "numerics", "time", ""}) {
     const std::string why = restart_allow_error(bad);
     EXPECT_NE(why.find("--restart-allow " + std::string(bad) + ": only numerics.* and time.*"),
               std::string::npos)

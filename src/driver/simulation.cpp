@@ -622,8 +622,6 @@ const char* real_name() {
   return sizeof(Real) == 8 ? "double" : "float";
 }
 
-// Deck keys a restart may change: where and how often output goes, how far the run goes, how
-// the ranks split the mesh, the free text.
 // Does `key` match one of the --restart-allow patterns (an exact key, or "prefix.*")?
 bool allowed_by(const std::vector<std::string>& patterns, const std::string& key) {
   for (const std::string& p : patterns) {
@@ -636,6 +634,8 @@ bool allowed_by(const std::vector<std::string>& patterns, const std::string& key
   return false;
 }
 
+// Deck keys a restart may change: where and how often output goes, how far the run goes, how
+// the ranks split the mesh, the free text.
 bool restart_may_change(const std::string& key) {
   return key.rfind("output.", 0) == 0 || key == "output" || key == "time.end" ||
          key == "time.max_cycles" || key.rfind("mesh.ranks", 0) == 0 || key == "description";
@@ -686,8 +686,9 @@ struct RestoreSource {
 std::string restart_allow_error(const std::string& pattern) {
   const bool wildcard = pattern.size() >= 2 && pattern.compare(pattern.size() - 2, 2, ".*") == 0;
   const std::string stem = wildcard ? pattern.substr(0, pattern.size() - 2) : pattern;
-  const bool scoped = stem == "numerics" || stem == "time" || stem.rfind("numerics.", 0) == 0 ||
-                      stem.rfind("time.", 0) == 0;
+  // a bare "numerics" or "time" names no deck key (keys are leaves): only "numerics.*", "time.*"
+  const bool scoped = ((stem == "numerics" || stem == "time") && wildcard) ||
+                      stem.rfind("numerics.", 0) == 0 || stem.rfind("time.", 0) == 0;
   if (scoped && stem.find('*') == std::string::npos && stem.back() != '.') return "";
   return "--restart-allow " + pattern +
          ": only numerics.* and time.* keys (an exact key, or a prefix ending in '.*') may "
