@@ -329,6 +329,7 @@ TEST(RestartRefusal, AllowedKeysAreKeptAndTheRunGoesOn) {
   RunSettings settings;
   settings.quiet = true;
   settings.restart_allow = {"numerics.layout"};  // an exact key (the refusal above: a prefix)
+  settings.output_dir = dir.path;                // (for the checkpoint written below)
   Simulation sim(test::load_scene("triple_point.yaml", deck("dense")), MPI_COMM_WORLD, settings);
   sim.restart(ckpt);
   const RunResult r = sim.run();
@@ -337,6 +338,17 @@ TEST(RestartRefusal, AllowedKeysAreKeptAndTheRunGoesOn) {
   ASSERT_EQ(r.restart_changes.size(), 1u);
   EXPECT_EQ(r.restart_changes[0], layout_line);
   expect_identical(straight, snapshot(sim), "compact -> dense restart");
+  // A checkpoint written after the change carries it: a restart from there (no change now)
+  // reports the run's history.
+  const std::string later = sim.write_checkpoint_now();
+  RunSettings plain;
+  plain.quiet = true;
+  Simulation again(test::load_scene("triple_point.yaml", deck("dense")), MPI_COMM_WORLD, plain);
+  again.restart(later);
+  const RunResult r2 = again.run();
+  EXPECT_TRUE(r2.restart_changes.empty());
+  ASSERT_EQ(r2.restart_history.size(), 1u);
+  EXPECT_EQ(r2.restart_history[0], "cycle 5: " + layout_line);
 }
 
 TEST(RestartRefusal, AllowPatternsOnlyForNumericsAndTime) {

@@ -713,7 +713,8 @@ std::string Simulation::checkpoint_meta() const {
                       {"next_dump", next_dump_},
                       {"start", totals_json(start_)},
                       {"dumps", dumps},
-                      {"files", files_}};
+                      {"files", files_},
+                      {"restart_history", restart_history_}};
   return j.dump();
 }
 
@@ -852,6 +853,12 @@ void Simulation::restart(const std::string& path) {
     dumps_.clear();
     for (const auto& d : meta.at("dumps"))
       dumps_.push_back({d.at(0).get<std::string>(), d.at(1).get<double>(), d.at(2).get<long>()});
+    // every --restart-allow change of the run's earlier restarts, then this one's
+    restart_history_.clear();
+    if (meta.contains("restart_history"))
+      restart_history_ = meta.at("restart_history").get<std::vector<std::string>>();
+    for (const std::string& c : restart_changes_)
+      restart_history_.push_back("cycle " + std::to_string(cycle_) + ": " + c);
   } catch (const std::exception& e) {
     throw RunError("checkpoint " + path + ": incomplete metadata: " + e.what());
   }
@@ -905,6 +912,7 @@ RunResult Simulation::run() {
   r.first_cycle = cycle_;
   r.restarted_from = restarted_from_;
   r.restart_changes = restart_changes_;
+  r.restart_history = restart_history_;
   if (!restarted_) {
     start_ = hydro_->totals();
     t_ = 0;
@@ -1089,6 +1097,7 @@ std::string Simulation::summary_json(const RunResult& r) const {
     js["restarted_from"] = r.restarted_from;
     js["restart_cycle"] = r.first_cycle;
     js["restart_changes"] = r.restart_changes;
+    js["restart_history"] = r.restart_history;
   }
   if (!r.ok) {
     const auto& h = r.health;

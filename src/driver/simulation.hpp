@@ -47,6 +47,8 @@ struct RunResult {
   std::string restarted_from;            // checkpoint path, or empty
   // deck keys this restart changed (--restart-allow): "key: 'old' in the checkpoint, 'new' here"
   std::vector<std::string> restart_changes;
+  // every restart's changes of the run so far, "cycle N: <change>" (kept in the checkpoints)
+  std::vector<std::string> restart_history;
   long first_cycle = 0;      // cycle this process started at (restart: > 0)
   std::string output_error;  // a dump or checkpoint that could not be written
 };
@@ -102,7 +104,7 @@ class Simulation {
   long cycle_ = 0;
   Real dt_old_ = 0;
   hydro::Totals start_;
-  std::vector<std::string> restart_changes_;
+  std::vector<std::string> restart_changes_, restart_history_;
   bool restarted_ = false;
   std::string restarted_from_;
   std::vector<std::string> files_;
