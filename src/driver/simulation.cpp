@@ -622,14 +622,16 @@ const char* real_name() {
   return sizeof(Real) == 8 ? "double" : "float";
 }
 
+// Is a --restart-allow pattern a prefix ("numerics.*") rather than an exact key?
+bool prefix_pattern(const std::string& p) {
+  return p.size() >= 2 && p.compare(p.size() - 2, 2, ".*") == 0;
+}
+
 // Does `key` match one of the --restart-allow patterns (an exact key, or "prefix.*")?
 bool allowed_by(const std::vector<std::string>& patterns, const std::string& key) {
   for (const std::string& p : patterns) {
-    if (p.size() >= 2 && p.compare(p.size() - 2, 2, ".*") == 0) {
-      if (key.compare(0, p.size() - 1, p, 0, p.size() - 1) == 0) return true;
-    } else if (key == p) {
+    if (prefix_pattern(p) ? key.compare(0, p.size() - 1, p, 0, p.size() - 1) == 0 : key == p)
       return true;
-    }
   }
   return false;
 }
@@ -684,7 +686,7 @@ struct RestoreSource {
 }  // namespace
 
 std::string restart_allow_error(const std::string& pattern) {
-  const bool wildcard = pattern.size() >= 2 && pattern.compare(pattern.size() - 2, 2, ".*") == 0;
+  const bool wildcard = prefix_pattern(pattern);
   const std::string stem = wildcard ? pattern.substr(0, pattern.size() - 2) : pattern;
   // a bare "numerics" or "time" names no deck key (keys are leaves): only "numerics.*", "time.*"
   const bool scoped = ((stem == "numerics" || stem == "time") && wildcard) ||
