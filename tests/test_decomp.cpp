@@ -47,9 +47,9 @@ Fields run_on(const Scene& scene, int nranks) {
       }
     if (const strength::Strength* st = r.sim->hydro().strength())
       for (int q = 0; q < st->sets(); ++q) {
-        for (const Field3& c : st->set(q).s)
-          f.strength.push_back(test::gather(m, c, Centering::Cell));
-        f.strength.push_back(test::gather(m, st->set(q).eps_p, Centering::Cell));
+        const strength::StressSet set = st->gathered(q);
+        for (const Field3& c : set.s) f.strength.push_back(test::gather(m, c, Centering::Cell));
+        f.strength.push_back(test::gather(m, set.eps_p, Centering::Cell));
       }
     if (const burn::Burn* b = r.sim->hydro().burn())
       f.burn = test::gather(m, b->fraction(), Centering::Cell);

@@ -114,9 +114,10 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
 void Hydro::exchange_cells() {
   // the material exchange also writes the ghosts' cell averages
   std::vector<HaloField> f;
-  if (mm_)
+  if (mm_) {
     mm_->exchange();
-  else
+    if (strength_ && strength_->pooled()) strength_->exchange_compact(halo_);
+  } else
     f = {{s_.rho, Centering::Cell, {1, 1, 1}}, {s_.e, Centering::Cell, {1, 1, 1}}};
   if (strength_)
     for (const HaloField& h : strength_->halo_fields()) f.push_back(h);

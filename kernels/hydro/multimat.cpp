@@ -623,6 +623,8 @@ void Hydro::mm_clear_absent() {
     } fs;
     if (c == burn_carrier_) {
       fs.f[fs.n++] = burn_->fraction();
+    } else if (strength_->pooled()) {
+      continue;  // (a pooled set holds nothing where its material is absent)
     } else {
       const strength::StressSet& st = strength_->set(c);
       for (const Field3& x : st.s) fs.f[fs.n++] = x;

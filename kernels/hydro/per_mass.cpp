@@ -9,11 +9,18 @@ namespace mp::hydro {
 void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
                     const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
                     const std::vector<Field3>& fields, const Field3& scratch, int order) {
+  for (const Field3& phi : fields) {
+    Kokkos::deep_copy(scratch, phi);
+    remap_per_mass_from(mesh, axes, mass_flux, rho, pre, scratch, phi, order);
+  }
+}
+
+void remap_per_mass_from(const Mesh& mesh, const std::array<bool, 3>& axes,
+                         const std::array<Field3, 3>& mass_flux, const Field3& rho,
+                         const Field3& pre, const Field3& old, const Field3& phi, int order) {
   const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
   auto mfx = mass_flux[0], mfy = mass_flux[1], mfz = mass_flux[2];
-  auto old = scratch;
-  for (const Field3& phi : fields) {
-    Kokkos::deep_copy(old, phi);
+  {
     Kokkos::parallel_for(
         "remap::per_mass", mesh.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
           // flux of phi through face (fi, fj, fk) normal to d with mass flux m, from its donor

@@ -18,4 +18,11 @@ void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
                     const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
                     const std::vector<Field3>& fields, const Field3& scratch, int order);
 
+// The same step for one quantity whose values before the step are `old` (every cell the owned
+// cells' fluxes read: the owned cells and two layers of ghosts), written to `phi` on the owned
+// cells; the arithmetic of remap_per_mass, operand for operand.
+void remap_per_mass_from(const Mesh& mesh, const std::array<bool, 3>& axes,
+                         const std::array<Field3, 3>& mass_flux, const Field3& rho,
+                         const Field3& pre, const Field3& old, const Field3& phi, int order);
+
 }  // namespace mp::hydro

@@ -5,6 +5,7 @@
 //   split (default): three steps of one axis each, order x,y,z / z,y,x alternating by cycle;
 //   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
 //            permutations of the axes; stable for a Courant-number sum below one).
+#include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/profiling.hpp"
 #include "hydro/hydro.hpp"
@@ -196,7 +197,7 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // the strength module's quantities ride on the same mass fluxes (before rho changes)
   // (a multi-material scene's on its carriers' mass fluxes and densities)
   if (mm_ && (strength_ || burn_)) mm_carriers();
-  if (strength_)
+  if (strength_ && !strength_->pooled())
     for (int q = 0; q < strength_->sets(); ++q) {
       const Carrier c = carrier(q);
       strength_->remap(q, axes, c.flux, c.rho, pre, ord);
@@ -231,6 +232,18 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   if (mm_) {
     for (int d = 0; d < 3; ++d)
       if (axes[d]) mm_remap_cells(d);
+    // pooled stress sets: from the pool before the update into the pool after it (one axis
+    // per step: MaterialState::previous is the pool before this sweep's update)
+    if (strength_ && strength_->pooled()) {
+      if (int(axes[0]) + int(axes[1]) + int(axes[2]) != 1)
+        throw RunError("pooled stress sets need split remap sweeps");
+      std::vector<Field3> flux, crho;
+      for (int q = 0; q < strength_->sets(); ++q) {
+        flux.push_back(carrier_flux_[q]);
+        crho.push_back(carrier_rho_[q]);
+      }
+      strength_->remap_compact(axes, flux, crho, pre, ord);
+    }
     if (strength_ || burn_) mm_clear_absent();
   } else {
     Kokkos::parallel_for(

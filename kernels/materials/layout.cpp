@@ -225,6 +225,20 @@ MaterialState::MaterialState(const Mesh& mesh, LayoutKind kind, int nmat, Field3
   }
 }
 
+void MaterialState::set_extras(int total, int carried) {
+  if (total < 0 || total > kMaxExtras || carried < 0 || carried > total)
+    throw RunError("material pool: " + std::to_string(total) + " extra values per slot (" +
+                   std::to_string(carried) + " carried); at most " + std::to_string(kMaxExtras));
+  if (kind_ != LayoutKind::Compact) return;
+  for (CompactDev* c : {&compact_, &next_}) {
+    c->nx = total;
+    c->nxc = carried;
+    const std::size_t cap = c->smat.extent(0);
+    for (int x = 0; x < total; ++x)
+      if (c->sx[x].extent(0) < cap) c->sx[x] = Buffer("compact::slot_extra", cap);
+  }
+}
+
 void MaterialState::resize_pool(CompactDev& c, int slots) const {
   if (c.smat.extent(0) >= std::size_t(slots) && c.smat.extent(0) > 0) return;
   const int cap = std::max(slots + slots / 4, 16);  // room to grow before the next allocation
@@ -242,6 +256,7 @@ void MaterialState::resize_pool(CompactDev& c, int slots) const {
     c.sfm[s] = alloc("compact::slot_mass_flux");
     c.sfe[s] = alloc("compact::slot_energy_flux");
   }
+  for (int x = 0; x < c.nx; ++x) c.sx[x] = alloc("compact::slot_extra");
 }
 
 void MaterialState::exchange() {
@@ -496,10 +511,12 @@ double MaterialState::bytes() const {
     return double(sizeof(Real)) * nmat_ * (5 * cells + 3 * double(ex_ + 1) * (ey_ + 1) * (ez_ + 1));
   // two buffer sets (the current one and the rebuild target, swapped after each rebuild),
   // each: three int cell arrays, per slot a material id, 5 state values and 6 face fluxes, and
-  // the mixed list; one byte per cell marks the cells an assign wrote in place
+  // the mixed list, and a module's extra values per slot; one byte per cell marks the cells an
+  // assign wrote in place
   double b = cells;
   for (const CompactDev* c : {&compact_, &next_})
-    b += 3 * sizeof(int) * cells + double(c->smat.extent(0)) * (sizeof(int) + 11 * sizeof(Real)) +
+    b += 3 * sizeof(int) * cells +
+         double(c->smat.extent(0)) * (sizeof(int) + (11 + c->nx) * sizeof(Real)) +
          sizeof(int) * double(c->mixed.extent(0));
   return b;
 }

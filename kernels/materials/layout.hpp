@@ -31,6 +31,9 @@ namespace mp::mat {
 
 // Largest number of materials one scene may hold (local per-cell arrays are sized by it).
 constexpr int kMaxMaterials = 16;
+// Most per-slot quantities a module may keep in the compact pool beside the layout's own (the
+// strength module keeps 7: its 6 deviator components and the plastic strain).
+constexpr int kMaxExtras = 8;
 
 enum class LayoutKind { Dense, Compact };
 
@@ -70,6 +73,11 @@ struct CompactDev {
   Buffer sfv[2], sfm[2], sfe[2];  // slot fluxes through the cell's low (0) / high (1) face
   IntBuffer mixed;                // row -> linear cell index (i * ey + j) * ez + k
   int nmixed = 0;
+  // A module's per-slot quantities (MaterialState::set_extras): nx buffers, of which the first
+  // nxc are carried across a rebuild for the cells it leaves unchanged (the others are
+  // scratch of one cycle phase). Their pure-cell values live in the module's cell arrays.
+  int nx = 0, nxc = 0;
+  Buffer sx[kMaxExtras];
 };
 
 // Accessors handed to per-cell operations.
@@ -228,6 +236,15 @@ class MaterialState {
   // sum alpha_m rho_m over the materials m whose bit is set in `mask`, on every cell (ghosts
   // included): the density of a module's carrier materials (kernels/hydro/hydro.hpp).
   void carrier_density(unsigned mask, const Field3& out) const;
+  // Gives every slot of the compact pool `total` more values (kMaxExtras at most) for a module
+  // that stores per-material quantities only where the material is (the strength module's
+  // stress sets, issue #12); a rebuild copies the first `carried` of them for the cells it
+  // leaves unchanged. The dense layout has none (the module keeps cell arrays per material).
+  void set_extras(int total, int carried);
+  // The compact pool as it stood before the last assign: the previous buffer set when that
+  // assign rebuilt the pool, else the current one (the layout, slot materials and extras are
+  // then unchanged). Read by a module that remaps its per-slot quantities after the update.
+  const CompactDev& previous() const { return rebuilt_ ? next_ : compact_; }
   // Mass of each material over the owned cells (global sums).
   std::vector<double> material_masses() const;
   // Volume fraction of material m on the block (ghosts included), for output.
@@ -261,6 +278,7 @@ class MaterialState {
   Field3 rho_, e_, p_, ph_;
   DenseDev dense_;
   CompactDev compact_, next_;  // current and rebuild target (swapped after each rebuild)
+  bool rebuilt_ = false;       // the last assign rebuilt the pool (previous() is next_)
   // compact: 1 where this assign wrote a changed cell in place (written for every changed
   // cell of an in-place source; read only for changed cells)
   Kokkos::View<unsigned char***, MemSpace> stamp_;
@@ -433,6 +451,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   // cells), again in the fill pass instead of staged: staging would need a per-cell x nmat
   // buffer, the dense layout's memory. Pure results of an own-cell-only source are written in
   // the count pass (most cells of a scene are pure).
+  rebuilt_ = false;
   const CompactDev old = compact_;
   CompactDev nw = next_;
   const int ey = ey_, ez = ez_;
@@ -568,6 +587,8 @@ void MaterialState::assign(const std::string& name, const Source& src) {
             return;
           }
           const int f = old.first(i, j, k);
+          for (int x = 0; x < old.nxc; ++x)
+            for (int s = 0; s < n; ++s) nw.sx[x](q0 + s) = old.sx[x](f + s);
           for (int s = 0; s < n; ++s) {
             nw.smat(q0 + s) = old.smat(f + s);
             nw.salpha(q0 + s) = old.salpha(f + s);
@@ -585,6 +606,9 @@ void MaterialState::assign(const std::string& name, const Source& src) {
           for (int m = 0; m < nmat; ++m)
             if (a[m] > 0) nw.mat(i, j, k) = m;
         } else {
+          // a module's carried values start at 0 (its remap or halo writes them next)
+          for (int x = 0; x < nw.nxc; ++x)
+            for (int s = 0; s < n; ++s) nw.sx[x](q0 + s) = 0;
           int q = q0;
           for (int m = 0; m < nmat; ++m) {
             if (!(a[m] > 0)) continue;
@@ -600,6 +624,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       });
   next_ = compact_;  // the old buffers become the next rebuild's target
   compact_ = nw;
+  rebuilt_ = true;
 }
 
 }  // namespace mp::mat

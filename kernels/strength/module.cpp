@@ -1,6 +1,8 @@
 // The strength module's kernels (module.hpp says what each seam does and why).
 #include "strength/module.hpp"
 
+#include "core/error.hpp"
+
 #include "hydro/per_mass.hpp"
 #include "hydro/point.hpp"
 #include "strength/stress_update.hpp"
@@ -38,6 +40,7 @@ KOKKOS_INLINE_FUNCTION Mat3 cell_gradient(const Field3& u, const Field3& v, cons
 // The six components of a deviator field at a cell.
 struct SymField {
   Field3 xx, yy, zz, xy, yz, zx;
+  SymField() = default;
   explicit SymField(const std::array<Field3, 6>& s)
       : xx(s[0]), yy(s[1]), zz(s[2]), xy(s[3]), yz(s[4]), zx(s[5]) {}
   KOKKOS_INLINE_FUNCTION Sym get(int i, int j, int k) const {
@@ -75,18 +78,36 @@ Strength::Strength(const Mesh& mesh, const FlowStress& model, Real rho0)
   allocate();
 }
 
-Strength::Strength(const Mesh& mesh, const MaterialModels& models,
-                   const mat::MaterialState* materials, const std::vector<std::string>& names)
+Strength::Strength(const Mesh& mesh, const MaterialModels& models, mat::MaterialState* materials,
+                   const std::vector<std::string>& names)
     : mesh_(mesh), rho0_(1), models_(models), mm_(materials), names_(names) {
   for (int& q : set_of_) q = -1;
+  pooled_ = materials->kind() == mat::LayoutKind::Compact;
   for (int m = 0; m < models.n; ++m) {
     if (models.f[m].kind == kNoStrength) continue;
     set_of_[m] = int(sets_.size());
-    sets_.push_back(new_set(m, "_" + std::to_string(m)));
+    if (pooled_) {
+      StressSet st;
+      st.material = m;
+      sets_.push_back(st);
+    } else {
+      sets_.push_back(new_set(m, "_" + std::to_string(m)));
+    }
   }
   const char* comp[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
   for (int c = 0; c < 6; ++c)
     cell_half_[c] = mesh.new_field(std::string("cell_stress_half_") + comp[c], Centering::Cell);
+  if (pooled_) {
+    for (int c = 0; c < 6; ++c)
+      pure_[c] = mesh.new_field(std::string("pure_stress_") + comp[c], Centering::Cell);
+    pure_[6] = mesh.new_field("pure_plastic_strain", Centering::Cell);
+    // per slot: the deviator and plastic strain, carried across rebuilds (the half-step
+    // deviator of a mixed cell's material lives in half_, indexed by the current pool's slot:
+    // no rebuild comes between the predictor that writes it and the corrector that reads it)
+    materials->set_extras(7, 7);
+    for (int q = 6; q < int(sets_.size()); ++q)
+      gather_.push_back(mesh.new_field("stress_gather_" + std::to_string(q), Centering::Cell));
+  }
   allocate();
 }
 
@@ -213,6 +234,7 @@ void Strength::remap(int q, const std::array<bool, 3>& axes, const std::array<Fi
 std::vector<HaloField> Strength::halo_fields() const {
   const auto C = Centering::Cell;
   std::vector<HaloField> h;
+  if (pooled_) return h;  // (exchange_compact)
   for (const StressSet& st : sets_) {
     // the shear components change sign under the two reflections that flip them
     const std::vector<HaloField> one{{st.s[0], C, {1, 1, 1}},   {st.s[1], C, {1, 1, 1}},
@@ -238,7 +260,8 @@ std::vector<OutputField> set_fields(const StressSet& st, const std::string& suff
 
 std::vector<OutputField> Strength::output_fields() const {
   std::vector<OutputField> f;
-  for (const StressSet& st : sets_) {
+  for (int q = 0; q < sets(); ++q) {
+    const StressSet st = gathered(q);
     const std::string suffix = st.material < 0 ? ""
                                : st.material < int(names_.size())
                                    ? "_" + names_[st.material]
@@ -251,7 +274,8 @@ std::vector<OutputField> Strength::output_fields() const {
 
 std::vector<OutputField> Strength::state_fields() const {
   std::vector<OutputField> f;
-  for (const StressSet& st : sets_) {
+  for (int q = 0; q < sets(); ++q) {
+    const StressSet st = gathered(q);
     const auto one = set_fields(st, st.material < 0 ? "" : "_" + std::to_string(st.material));
     f.insert(f.end(), one.begin(), one.end());
   }
@@ -274,9 +298,102 @@ KOKKOS_INLINE_FUNCTION int find_material(const Cell& cell, int m) {
   return -1;
 }
 
-// The plastic strain field of each material with strength, indexed by material id.
+// Does the cell hold more than one material?
+template <class Cell>
+KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
+  int n = 0;
+  for (int s = 0; s < cell.count(); ++s) n += cell.get(s).alpha > 0 ? 1 : 0;
+  return n > 1;
+}
+
+// Where one stress set's values are (module.hpp, "Storage"): the dense layout's cell fields of
+// the set, or the compact layout's pure-cell arrays and per-slot extras (0-5 deviator, 6
+// plastic strain, 7-12 half-step deviator). Accessed through the cell accessor of the layout.
+struct SetStore {
+  int mid = -1;
+  SymField s, sh;  // dense
+  Field3 ep;
+  SymField ps;  // compact: pure cells
+  Field3 pep;
+  Buffer sx[13];  // compact: slots
+
+  KOKKOS_INLINE_FUNCTION Sym get_s(const mat::DenseCell&, int, int i, int j, int k) const {
+    return s.get(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Sym get_s(const mat::PureCell&, int, int i, int j, int k) const {
+    return ps.get(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Sym get_s(const mat::MixedCell& c, int slot, int, int, int) const {
+    const int q = c.first + slot;
+    return {sx[0](q), sx[1](q), sx[2](q), sx[3](q), sx[4](q), sx[5](q)};
+  }
+  KOKKOS_INLINE_FUNCTION void set_s(const mat::DenseCell&, int, int i, int j, int k,
+                                    const Sym& t) const {
+    s.set(i, j, k, t);
+  }
+  KOKKOS_INLINE_FUNCTION void set_s(const mat::PureCell&, int, int i, int j, int k,
+                                    const Sym& t) const {
+    ps.set(i, j, k, t);
+  }
+  KOKKOS_INLINE_FUNCTION void set_s(const mat::MixedCell& c, int slot, int, int, int,
+                                    const Sym& t) const {
+    put(c.first + slot, 0, t);
+  }
+  KOKKOS_INLINE_FUNCTION Real& eps(const mat::DenseCell&, int, int i, int j, int k) const {
+    return ep(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Real& eps(const mat::PureCell&, int, int i, int j, int k) const {
+    return pep(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Real& eps(const mat::MixedCell& c, int slot, int, int, int) const {
+    return sx[6](c.first + slot);
+  }
+  // The half-step deviator of a material that shares its cell (a material alone in its cell
+  // has the cell's: the callers read cell_half_ there, and a pure compact cell stores none).
+  KOKKOS_INLINE_FUNCTION Sym get_sh(const mat::DenseCell&, int, int i, int j, int k) const {
+    return sh.get(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Sym get_sh(const mat::PureCell&, int, int, int, int) const {
+    return Sym{};  // (never called: a pure cell's material is alone)
+  }
+  KOKKOS_INLINE_FUNCTION Sym get_sh(const mat::MixedCell& c, int slot, int, int, int) const {
+    const int q = c.first + slot;
+    return {sx[7](q), sx[8](q), sx[9](q), sx[10](q), sx[11](q), sx[12](q)};
+  }
+  KOKKOS_INLINE_FUNCTION void set_sh(const mat::DenseCell&, int, int i, int j, int k,
+                                     const Sym& t) const {
+    sh.set(i, j, k, t);
+  }
+  KOKKOS_INLINE_FUNCTION void set_sh(const mat::PureCell&, int, int, int, int, const Sym&) const {}
+  KOKKOS_INLINE_FUNCTION void set_sh(const mat::MixedCell& c, int slot, int, int, int,
+                                     const Sym& t) const {
+    put(c.first + slot, 7, t);
+  }
+  KOKKOS_INLINE_FUNCTION void put(int q, int x0, const Sym& t) const {
+    sx[x0](q) = t.xx;
+    sx[x0 + 1](q) = t.yy;
+    sx[x0 + 2](q) = t.zz;
+    sx[x0 + 3](q) = t.xy;
+    sx[x0 + 4](q) = t.yz;
+    sx[x0 + 5](q) = t.zx;
+  }
+};
+
+// The plastic strain of each material with strength, indexed by material id (dense: its set's
+// field; compact: the pure-cell array and the slot extra, shared by all).
 struct StrainOf {
   Field3 f[mat::kMaxMaterials];
+  Field3 pure;
+  Buffer slot;
+  KOKKOS_INLINE_FUNCTION Real get(const mat::DenseCell&, int, int m, int i, int j, int k) const {
+    return f[m](i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Real get(const mat::PureCell&, int, int, int i, int j, int k) const {
+    return pure(i, j, k);
+  }
+  KOKKOS_INLINE_FUNCTION Real get(const mat::MixedCell& c, int s, int, int, int, int) const {
+    return slot(c.first + s);
+  }
 };
 
 KOKKOS_INLINE_FUNCTION Real stress_power(const Sym& q, const Mat3& L) {
@@ -284,12 +401,38 @@ KOKKOS_INLINE_FUNCTION Real stress_power(const Sym& q, const Mat3& L) {
          q.yz * (L(1, 2) + L(2, 1)) + q.zx * (L(2, 0) + L(0, 2));
 }
 
+// The shear components change sign under the two reflections that flip them.
+constexpr int kParity[7][3] = {{1, 1, 1},   {1, 1, 1},   {1, 1, 1}, {-1, -1, 1},
+                               {1, -1, -1}, {-1, 1, -1}, {1, 1, 1}};
+
 }  // namespace
+
+// The store of set q as the kernels launched now see it (the pool's buffers are those of its
+// current buffer set).
+#define MP_SET_STORE(q)                                                             \
+  SetStore st;                                                                      \
+  st.mid = sets_[q].material;                                                       \
+  if (pooled_) {                                                                    \
+    st.ps = SymField({pure_[0], pure_[1], pure_[2], pure_[3], pure_[4], pure_[5]}); \
+    st.pep = pure_[6];                                                              \
+    const mat::CompactDev& cd = mm_->compact();                                     \
+    for (int x = 0; x < 7; ++x) st.sx[x] = cd.sx[x];                                \
+    for (int x = 7; x < 13; ++x) st.sx[x] = half_[x - 7];                           \
+  } else {                                                                          \
+    st.s = SymField(sets_[q].s);                                                    \
+    st.sh = SymField(sets_[q].s_half);                                              \
+    st.ep = sets_[q].eps_p;                                                         \
+  }
 
 void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const {
   const MaterialModels models = models_;
   StrainOf eps;
-  for (const StressSet& st : sets_) eps.f[st.material] = st.eps_p;
+  if (pooled_) {
+    eps.pure = pure_[6];
+    eps.slot = mm_->compact().sx[6];
+  } else {
+    for (const StressSet& st : sets_) eps.f[st.material] = st.eps_p;
+  }
   mm_->for_cells(
       "strength::sound_speed", {0, 0, 0},
       {mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
@@ -303,8 +446,8 @@ void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const 
           const mat::MatRef m = cell.get(s);
           const FlowStress& f = models.f[m.m];
           if (!(m.alpha > 0) || f.kind == kNoStrength) continue;
-          const PointState x =
-              point_state(f, models.rho0[m.m], *m.rho, *m.e, *m.p, eps.f[m.m](i, j, k), Real(0));
+          const PointState x = point_state(f, models.rho0[m.m], *m.rho, *m.e, *m.p,
+                                           eps.get(cell, s, m.m, i, j, k), Real(0));
           G += m.alpha * f.shear_modulus(x);
           any = true;
         }
@@ -322,30 +465,35 @@ void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, R
   const Real h = Real(0.5) * dt;
   const int ng = Mesh::ng;
   const auto end = mesh_.owned_end();
-  for (std::size_t q = 0; q < sets_.size(); ++q) {
-    const StressSet& st = sets_[q];
-    const int mid = st.material;
+  if (pooled_) {
+    const std::size_t cap = mm_->compact().smat.extent(0);
+    for (Buffer& b : half_)
+      if (b.extent(0) < cap)
+        b = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "slot_stress_half"), cap);
+  }
+  for (int q = 0; q < sets(); ++q) {
+    MP_SET_STORE(q)
+    const int mid = st.mid;
     const bool first = q == 0;
-    const SymField s(st.s), sh(st.s_half);
-    auto ep = st.eps_p;
     mm_->for_cells(
         "strength::predictor", {ng - 1, ng - 1, ng - 1}, {end[0] + 1, end[1] + 1, end[2] + 1},
         KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
           const int slot = find_material(cell, mid);
           if (slot < 0) {
-            sh.set(i, j, k, Sym{});
+            if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
+              st.set_sh(cell, 0, i, j, k, Sym{});
             if (first) cs.set(i, j, k, Sym{});
             return;
           }
           const mat::MatRef m = cell.get(slot);
           const FlowStress& f = models.f[mid];
           const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
-          const PointState x = point_state(f, models.rho0[mid], *m.rho, *m.e, *m.ph, ep(i, j, k),
-                                           equivalent_strain_rate(L));
+          const PointState x = point_state(f, models.rho0[mid], *m.rho, *m.e, *m.ph,
+                                           st.eps(cell, slot, i, j, k), equivalent_strain_rate(L));
           const Real G = f.shear_modulus(x);
-          Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, h);
+          Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, h);
           radial_return(t, f.yield_stress(x), G);
-          sh.set(i, j, k, t);
+          st.set_sh(cell, slot, i, j, k, t);
           // the cell's stress on its nodes: each material's deviator over its share of the
           // cell, summed in material-id order
           const Real a = m.alpha;
@@ -361,33 +509,37 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
   const Geometry g = mesh_.geometry();
   const Real rx = Real(0.25) / g.dx[0], ry = Real(0.25) / g.dx[1], rz = Real(0.25) / g.dx[2];
   const MaterialModels models = models_;
+  const SymField cs(cell_half_);
   const int ng = Mesh::ng;
-  for (const StressSet& st : sets_) {
-    const int mid = st.material;
-    const SymField s(st.s), sh(st.s_half);
-    auto ep = st.eps_p;
+  for (int q = 0; q < sets(); ++q) {
+    MP_SET_STORE(q)
+    const int mid = st.mid;
     mm_->for_cells(
         "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
         KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
           const int slot = find_material(cell, mid);
           if (slot < 0) {
-            s.set(i, j, k, Sym{});
+            if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
+              st.set_s(cell, 0, i, j, k, Sym{});
             return;
           }
           const mat::MatRef m = cell.get(slot);
           const FlowStress& f = models.f[mid];
           const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
           // the work of the material's half-step deviator, alpha_m s_m : L V dt (its part of
-          // the power the cell's nodal forces took), per unit mass of the material
-          const Real power = stress_power(sh.get(i, j, k), L);
+          // the power the cell's nodal forces took), per unit mass of the material; a material
+          // alone in its cell has the cell's half-step stress
+          const Sym half = holds_several(cell) ? st.get_sh(cell, slot, i, j, k) : cs.get(i, j, k);
+          const Real power = stress_power(half, L);
           const Real r = *m.rho, en = *m.e;
-          const PointState x = point_state(f, models.rho0[mid], r, en, *m.ph, ep(i, j, k),
-                                           equivalent_strain_rate(L));
+          Real& ep = st.eps(cell, slot, i, j, k);
+          const PointState x =
+              point_state(f, models.rho0[mid], r, en, *m.ph, ep, equivalent_strain_rate(L));
           const Real G = f.shear_modulus(x);
-          Sym t = elastic_trial_rotated(s.get(i, j, k), L, G, dt);
+          Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, dt);
           const ReturnResult rr = radial_return(t, f.yield_stress(x), G);
-          s.set(i, j, k, t);
-          ep(i, j, k) += rr.d_eps_p;
+          st.set_s(cell, slot, i, j, k, t);
+          ep += rr.d_eps_p;
           // Where the work is negative (elastic unloading) in a cell that also holds materials
           // without strength, the material gives at most half of its specific energy and the
           // rest comes from those others by mass: the deviator a mixed cell holds came by remap
@@ -420,6 +572,149 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
             }
         });
   }
+}
+
+#undef MP_SET_STORE
+
+// ------------------------------------------------------------------------------------------
+// Pooled sets (module.hpp, "Storage").
+
+namespace {
+
+// Gather / scatter targets as a kernel reads them: each one's cell field, the pure-cell array
+// and slot buffer of its component, its set's material.
+struct PoolTargets {
+  Field3 f[16], pure[16];
+  Buffer slot[16];
+  int mid[16];
+  int n = 0;
+};
+
+PoolTargets pool_targets(const mat::CompactDev& dev, const std::vector<Strength::Target>& targets,
+                         const std::array<Field3, 7>& pure, const std::vector<StressSet>& sets) {
+  if (targets.size() > 16) throw RunError("strength: more than 16 gather targets at once");
+  PoolTargets t;
+  for (const Strength::Target& g : targets) {
+    t.f[t.n] = g.field;
+    t.pure[t.n] = pure[g.x];
+    t.slot[t.n] = dev.sx[g.x];
+    t.mid[t.n++] = sets[g.q].material;
+  }
+  return t;
+}
+
+}  // namespace
+
+void Strength::gather(const mat::CompactDev& dev, const std::vector<Target>& targets,
+                      const std::array<int, 3>& lo, const std::array<int, 3>& hi) const {
+  const PoolTargets t = pool_targets(dev, targets, pure_, sets_);
+  Kokkos::parallel_for(
+      "strength::gather", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        const int id = dev.mat(i, j, k);
+        if (id >= 0) {
+          for (int g = 0; g < t.n; ++g)
+            t.f[g](i, j, k) = t.mid[g] == id ? t.pure[g](i, j, k) : Real(0);
+          return;
+        }
+        const int f = dev.first(i, j, k), n = dev.nm(i, j, k);
+        for (int g = 0; g < t.n; ++g) {
+          Real v = 0;
+          for (int s = f; s < f + n; ++s)
+            if (dev.smat(s) == t.mid[g]) v = t.slot[g](s);
+          t.f[g](i, j, k) = v;
+        }
+      });
+}
+
+void Strength::scatter(const std::vector<Target>& targets, bool ghosts_only) const {
+  const mat::CompactDev dev = mm_->compact();
+  const PoolTargets t = pool_targets(dev, targets, pure_, sets_);
+  const int ng = Mesh::ng;
+  const auto end = mesh_.owned_end();
+  const int e0 = end[0], e1 = end[1], e2 = end[2];
+  auto put = KOKKOS_LAMBDA(int i, int j, int k) {
+    if (ghosts_only && i >= ng && i < e0 && j >= ng && j < e1 && k >= ng && k < e2) return;
+    const int id = dev.mat(i, j, k);
+    if (id >= 0) {
+      for (int g = 0; g < t.n; ++g)
+        if (id == t.mid[g]) t.pure[g](i, j, k) = t.f[g](i, j, k);
+      return;
+    }
+    const int f = dev.first(i, j, k), n = dev.nm(i, j, k);
+    for (int g = 0; g < t.n; ++g)
+      for (int s = f; s < f + n; ++s)
+        if (dev.smat(s) == t.mid[g]) t.slot[g](s) = t.f[g](i, j, k);
+  };
+  if (ghosts_only)
+    Kokkos::parallel_for("strength::scatter", mesh_.cells(Region::All), put);
+  else
+    Kokkos::parallel_for("strength::scatter", mesh_.cells(Region::Owned), put);
+}
+
+void Strength::remap_compact(const std::array<bool, 3>& axes, const std::vector<Field3>& flux,
+                             const std::vector<Field3>& rho, const Field3& pre, int order) {
+  // every set's component x before the update (the gather fields), then each set's remap into
+  // the scratch and its scatter into the updated pool: a pure cell's arrays are shared by the
+  // sets, so all are read before any is written
+  std::vector<Field3> old;
+  for (int q = 0; q < sets(); ++q) old.push_back(q < 6 ? cell_half_[q] : gather_[q - 6]);
+  const std::array<int, 3> lo{0, 0, 0};
+  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                              mesh_.extent(Centering::Cell, 2)};
+  for (int x = 0; x < 7; ++x) {
+    std::vector<Target> before;
+    for (int q = 0; q < sets(); ++q) before.push_back({q, x, old[q]});
+    gather(mm_->previous(), before, lo, hi);
+    for (int q = 0; q < sets(); ++q) {
+      hydro::remap_per_mass_from(mesh_, axes, {flux[q], flux[q], flux[q]}, rho[q], pre, old[q],
+                                 scratch_, order);
+      scatter({{q, x, scratch_}}, false);
+    }
+  }
+}
+
+void Strength::exchange_compact(Halo& halo) {
+  const int ng = Mesh::ng;
+  const auto end = mesh_.owned_end();
+  std::vector<Field3> f(cell_half_.begin(), cell_half_.end());
+  f.push_back(scratch_);
+  for (int q = 0; q < sets(); ++q) {
+    std::vector<HaloField> h;
+    std::vector<Target> t;
+    for (int x = 0; x < 7; ++x) {
+      t.push_back({q, x, f[x]});
+      h.push_back({f[x], Centering::Cell, {kParity[x][0], kParity[x][1], kParity[x][2]}});
+    }
+    gather(mm_->compact(), t, {ng, ng, ng}, end);
+    halo.exchange(h);
+    scatter(t, true);
+  }
+}
+
+StressSet Strength::gathered(int q) const {
+  if (!pooled_) return sets_[q];
+  StressSet st;
+  st.material = sets_[q].material;
+  const char* comp[6] = {"xx", "yy", "zz", "xy", "yz", "zx"};
+  for (int c = 0; c < 6; ++c)
+    st.s[c] = mesh_.new_field(std::string("stress_") + comp[c], Centering::Cell);
+  st.eps_p = mesh_.new_field("plastic_strain", Centering::Cell);
+  const std::array<int, 3> hi{mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                              mesh_.extent(Centering::Cell, 2)};
+  std::vector<Target> t;
+  for (int x = 0; x < 7; ++x) t.push_back({q, x, x < 6 ? st.s[x] : st.eps_p});
+  gather(mm_->compact(), t, {0, 0, 0}, hi);
+  return st;
+}
+
+void Strength::restore_state(const std::vector<OutputField>& state) {
+  if (!pooled_) return;
+  std::vector<Target> t;
+  for (int q = 0; q < sets(); ++q)
+    for (int x = 0; x < 7; ++x) t.push_back({q, x, state[std::size_t(7 * q + x)].view});
+  for (std::size_t a = 0; a < t.size(); a += 16)  // (a scatter takes 16 at most)
+    scatter(std::vector<Target>(t.begin() + a, t.begin() + std::min(a + 16, t.size())), false);
 }
 
 }  // namespace mp::strength

@@ -37,6 +37,19 @@
 // mass flux (the per-material "carriers" of kernels/hydro/hydro.hpp). A single-material scene
 // has one set, the cell's. Both layouts run the same point functions in material-id order, so
 // they give the same bits.
+//
+// Storage (issue #12): the dense layout keeps each set as cell fields (every cell holds every
+// material with strength: the paper's layout). The compact layout keeps a set only where its
+// material is: a pure cell's deviator and plastic strain in 7 cell arrays shared by all sets (a
+// pure cell holds one material), a mixed cell's in the pool's per-slot extras (6 + 1, carried
+// across rebuilds) and 6 slot buffers of the half-step deviator; a material alone in its cell takes
+// the cell's half-step stress as its own (both layouts read it there, so they agree bit for bit).
+// Its remap runs after the material update: each component of every set is gathered from the
+// pool as it stood before the update (MaterialState::previous) into a cell field, remapped with
+// the same kernel as the dense sets, and scattered into the new pool; its halo gathers the owned
+// cells, exchanges them with the field halo (the same parities) and scatters the ghosts. The
+// gather fields are the cell's half-step stress (dead between the corrector and the next
+// predictor) and the remap scratch, so a set costs the compact layout no cell array.
 #pragma once
 #include <array>
 #include <string>
@@ -75,11 +88,16 @@ struct StressSet {
 
 class Strength {
  public:
+  // Pooled sets: component x (0-5 deviator, 6 plastic strain) of set q, as a cell field.
+  struct Target {
+    int q, x;
+    Field3 field;
+  };
   // `rho0` is the material's reference density (the Steinberg–Guinan compression rho/rho0).
   Strength(const Mesh& mesh, const FlowStress& model, Real rho0);
   // A multi-material scene: the per-material state comes from `materials` (owned by the hydro,
   // it outlives the module); `names` are the materials' names (the dumps' field suffixes).
-  Strength(const Mesh& mesh, const MaterialModels& models, const mat::MaterialState* materials,
+  Strength(const Mesh& mesh, const MaterialModels& models, mat::MaterialState* materials,
            const std::vector<std::string>& names);
 
   // Adds 4 G / (3 rho) to c^2 (c the EOS sound speed on every cell).
@@ -100,8 +118,25 @@ class Strength {
   // material mass fluxes instead of the cell's.
   void remap(int q, const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
              const Field3& rho, const Field3& pre, int order);
-  // The halo fields of the carried quantities (exchanged with the cell fields).
+  // The compact layout's remap of every set (after the material update of a sweep along the
+  // axes of `axes`; `flux[q]`, `rho[q]` are set q's carrier mass fluxes and its density before
+  // the update).
+  void remap_compact(const std::array<bool, 3>& axes, const std::vector<Field3>& flux,
+                     const std::vector<Field3>& rho, const Field3& pre, int order);
+  // True when the sets live in the compact pool (remap_compact and exchange_compact, not
+  // remap and halo_fields).
+  bool pooled() const { return pooled_; }
+  // The halo fields of the carried quantities (exchanged with the cell fields; none when the
+  // sets are pooled).
   std::vector<HaloField> halo_fields() const;
+  // Pooled sets: the ghosts' values of every set, after the material exchange.
+  void exchange_compact(Halo& halo);
+  // Set q's deviator and plastic strain as cell fields (0 where its material is absent): the
+  // set's own fields (dense), or new fields gathered from the pool (compact).
+  StressSet gathered(int q) const;
+  // After a restart read state_fields(): pooled sets take the owned cells' values of the
+  // fields it returned (cells that hold the set's material).
+  void restore_state(const std::vector<OutputField>& state);
   // The dumps' fields: a single-material scene's stress_xx..zx and plastic_strain; a
   // multi-material scene's the same with each material's name appended (stress_xx_copper).
   std::vector<OutputField> output_fields() const;
@@ -112,7 +147,8 @@ class Strength {
   // Nodal forces of the half-step deviator (owned nodes), read by the acceleration.
   const std::array<Field3, 3>& force() const { return force_; }
   // The stress sets: one in a single-material scene, one per material with strength (in
-  // material-id order) in a multi-material scene.
+  // material-id order) in a multi-material scene. A pooled set's fields are empty (material
+  // only; gathered(q) has its values).
   int sets() const { return int(sets_.size()); }
   const StressSet& set(int q) const { return sets_[q]; }
   // The stress set of material m (multi-material scenes), or -1 when m has no strength.
@@ -130,12 +166,22 @@ class Strength {
   void mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const;
   void mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt);
   void mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb, Real dt);
+  // Each target's values from pool `dev` on the cells [lo, hi) (0 where the set's material is
+  // absent), at most 16 targets; and back into the current pool, on the owned cells or on the
+  // ghosts, for the cells that hold the set's material.
+  void gather(const mat::CompactDev& dev, const std::vector<Target>& targets,
+              const std::array<int, 3>& lo, const std::array<int, 3>& hi) const;
+  void scatter(const std::vector<Target>& targets, bool ghosts_only) const;
 
   const Mesh& mesh_;
   FlowStress model_;
   Real rho0_;
   MaterialModels models_;
   const mat::MaterialState* mm_ = nullptr;
+  bool pooled_ = false;
+  std::array<Field3, 7> pure_;  // pooled: a pure cell's deviator and plastic strain
+  std::vector<Field3> gather_;  // pooled: gather fields beyond the six of cell_half_
+  Buffer half_[6];              // pooled: a mixed cell's half-step deviators, per slot
   std::vector<std::string> names_;
   std::vector<StressSet> sets_;
   int set_of_[mat::kMaxMaterials];

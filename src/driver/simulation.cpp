@@ -809,7 +809,8 @@ void Simulation::restart(const std::string& path) {
       per.push_back(mesh_->new_field(std::string("restart_") + q, Centering::Cell));
       fields.push_back({q + std::to_string(m), Centering::Cell, per.back()});
     }
-  for (const OutputField& o : module_state()) fields.push_back(o);
+  const std::vector<OutputField> state = module_state();
+  for (const OutputField& o : state) fields.push_back(o);
   read_checkpoint_fields(*mesh_, path, fields);
   if (mm) {
     const int ex = mesh_->extent(Centering::Cell, 0), ey = mesh_->extent(Centering::Cell, 1),
@@ -834,6 +835,8 @@ void Simulation::restart(const std::string& path) {
           });
     }
     mm->assign("restart::assign", src);
+    // stress sets kept in the compact pool take their values once the pool holds the materials
+    if (strength::Strength* st = hydro_->strength()) st->restore_state(state);
     if (burn::Burn* b = hydro_->burn()) b->light();
     auto rho = s.rho, e = s.e;
     Kokkos::parallel_for(
