@@ -49,7 +49,8 @@
 // the same kernel as the dense sets, and scattered into the new pool; its halo gathers the owned
 // cells, exchanges them with the field halo (the same parities) and scatters the ghosts. The
 // gather fields are the cell's half-step stress (dead between the corrector and the next
-// predictor) and the remap scratch, so a set costs the compact layout no cell array.
+// predictor), one more field and the remap scratch: a set costs the compact layout no cell
+// array (up to 7 sets).
 #pragma once
 #include <array>
 #include <string>
@@ -166,12 +167,16 @@ class Strength {
   void mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const;
   void mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt);
   void mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb, Real dt);
-  // Each target's values from pool `dev` on the cells [lo, hi) (0 where the set's material is
-  // absent), at most 16 targets; and back into the current pool, on the owned cells or on the
-  // ghosts, for the cells that hold the set's material.
-  void gather(const mat::CompactDev& dev, const std::vector<Target>& targets,
-              const std::array<int, 3>& lo, const std::array<int, 3>& hi) const;
-  void scatter(const std::vector<Target>& targets, bool ghosts_only) const;
+  // Where a gather or scatter runs: the whole block, the owned cells, the owned cells with the
+  // ghost layers along one axis (what a remap sweep along it reads), the owned cells within ng
+  // of a face (what the halo reads), the ghost cells.
+  enum class Where { Block, Owned, SweepX, SweepY, SweepZ, OwnedShell, GhostShell };
+  template <class F>
+  void for_where(const std::string& name, Where w, F f) const;
+  // Each target's values from pool `dev` (0 where the set's material is absent), at most 16
+  // targets; and back into the current pool, for the cells that hold the set's material.
+  void gather(const mat::CompactDev& dev, const std::vector<Target>& targets, Where w) const;
+  void scatter(const std::vector<Target>& targets, Where w) const;
 
   const Mesh& mesh_;
   FlowStress model_;
