@@ -137,7 +137,9 @@ void expect_module_state_in_use(Simulation& sim, const std::string& file) {
       EXPECT_GT(below_one, 0) << "the burn has finished before the checkpoint";
     }
   }
-  if (strain_fields > 0) EXPECT_GT(strained, 0) << "no material has yielded by the checkpoint";
+  if (strain_fields > 0) {
+    EXPECT_GT(strained, 0) << "no material has yielded by the checkpoint";
+  }
 }
 
 // Runs the first `cycles` cycles on `comm` (the ranks not in it wait), writing a checkpoint in
