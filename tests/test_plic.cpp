@@ -512,11 +512,16 @@ TEST(Plic, OnionFacesOfADivergentDonorTakeNoMoreThanItHolds) {
                 // both faces scaled by the same factor (a face with no share keeps none; in
                 // float most of these pairs exceed the content only by rounding, often with
                 // one face's share 0)
-                if (hi[m] > 0 && lo[m] > 0)
+                if (hi[m] > 0 && lo[m] > 0) {
                   EXPECT_NEAR(double(hi_l[m]) / double(hi[m]), double(lo_l[m]) / double(lo[m]),
                               4 * test::kEps);
-                if (!(hi[m] > 0)) EXPECT_EQ(hi_l[m], Real(0));
-                if (!(lo[m] > 0)) EXPECT_EQ(lo_l[m], Real(0));
+                }
+                if (!(hi[m] > 0)) {
+                  EXPECT_EQ(hi_l[m], Real(0));
+                }
+                if (!(lo[m] > 0)) {
+                  EXPECT_EQ(lo_l[m], Real(0));
+                }
               } else if (hi_l[m] == hi[m] && lo_l[m] == lo[m]) {
                 ++unchanged;
               }
