@@ -47,7 +47,8 @@
 // Its remap runs after the material update: each component of every set is gathered from the
 // pool as it stood before the update (MaterialState::previous) into a cell field, remapped with
 // the same kernel as the dense sets, and scattered into the new pool; its halo gathers the owned
-// cells, exchanges them with the field halo (the same parities) and scatters the ghosts. The
+// shell (the owned cells within ng of a face), exchanges it with the field halo (the same
+// parities) and scatters the ghosts. The
 // gather fields are the cell's half-step stress (dead between the corrector and the next
 // predictor), one more field and the remap scratch: a set costs the compact layout no cell
 // array (up to 7 sets).
