@@ -355,12 +355,7 @@ struct BurnHook {
 // air beside copper went to negative energy in a cycle. A material then takes q rho_m / rho_cell
 // as the viscous term of pdv_energy; a pure cell keeps q itself (rho_m == rho_cell: the same
 // work, and the bits of before). docs/numerics.md, "Mixed cells".
-template <class Cell>
-KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
-  int n = 0;
-  for (int s = 0; s < cell.count(); ++s) n += cell.get(s).alpha > 0 ? 1 : 0;
-  return n > 1;
-}
+// (mat::holds_several tells the two apart.)
 
 BurnHook burn_hook(const burn::Burn* b) {
   if (!b) return {};
@@ -428,7 +423,7 @@ void Hydro::mm_predictor(Real vol) {
         const Real v_half = vol + dv;
         Real sum = 0, last = 0;
         int n = 0;
-        const bool several = holds_several(cell);
+        const bool several = mat::holds_several(cell);
         const Real qs = q(i, j, k) / rho(i, j, k);
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
@@ -471,7 +466,7 @@ void Hydro::mm_corrector(Real vol) {
         int slot[kMaxMaterials], id[kMaxMaterials];
         Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
         int n = 0;
-        const bool several = holds_several(cell);
+        const bool several = mat::holds_several(cell);
         const Real qs = q(i, j, k) / rho(i, j, k);
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);

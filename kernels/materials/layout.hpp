@@ -171,6 +171,14 @@ KOKKOS_INLINE_FUNCTION Real cumulative_fraction(const CompactDev& d, int i, int 
   return s;
 }
 
+// Does a cell (through its accessor) hold more than one material?
+template <class Cell>
+KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
+  int n = 0;
+  for (int s = 0; s < cell.count(); ++s) n += cell.get(s).alpha > 0 ? 1 : 0;
+  return n > 1;
+}
+
 // Does cell (i,j,k) hold material m and nothing else?
 KOKKOS_INLINE_FUNCTION bool pure_of(const DenseDev& d, int i, int j, int k, int m) {
   return d.alpha(m, i, j, k) == Real(1);

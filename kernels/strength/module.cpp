@@ -232,18 +232,22 @@ void Strength::remap(int q, const std::array<bool, 3>& axes, const std::array<Fi
                         order);
 }
 
+namespace {
+
+// Halo parities of the 7 carried quantities (xx, yy, zz, xy, yz, zx, plastic strain): the shear
+// components change sign under the two reflections that flip them.
+constexpr int kParity[7][3] = {{1, 1, 1},   {1, 1, 1},   {1, 1, 1}, {-1, -1, 1},
+                               {1, -1, -1}, {-1, 1, -1}, {1, 1, 1}};
+
+}  // namespace
+
 std::vector<HaloField> Strength::halo_fields() const {
   const auto C = Centering::Cell;
   std::vector<HaloField> h;
   if (pooled_) return h;  // (exchange_compact)
-  for (const StressSet& st : sets_) {
-    // the shear components change sign under the two reflections that flip them
-    const std::vector<HaloField> one{{st.s[0], C, {1, 1, 1}},   {st.s[1], C, {1, 1, 1}},
-                                     {st.s[2], C, {1, 1, 1}},   {st.s[3], C, {-1, -1, 1}},
-                                     {st.s[4], C, {1, -1, -1}}, {st.s[5], C, {-1, 1, -1}},
-                                     {st.eps_p, C, {1, 1, 1}}};
-    h.insert(h.end(), one.begin(), one.end());
-  }
+  for (const StressSet& st : sets_)
+    for (int x = 0; x < 7; ++x)
+      h.push_back({x < 6 ? st.s[x] : st.eps_p, C, {kParity[x][0], kParity[x][1], kParity[x][2]}});
   return h;
 }
 
@@ -299,14 +303,6 @@ KOKKOS_INLINE_FUNCTION int find_material(const Cell& cell, int m) {
   return -1;
 }
 
-// Does the cell hold more than one material?
-template <class Cell>
-KOKKOS_INLINE_FUNCTION bool holds_several(const Cell& cell) {
-  int n = 0;
-  for (int s = 0; s < cell.count(); ++s) n += cell.get(s).alpha > 0 ? 1 : 0;
-  return n > 1;
-}
-
 // Where one stress set's values are (module.hpp, "Storage"): the dense layout's cell fields of
 // the set, or the compact layout's pure-cell arrays and per-slot extras (0-5 deviator, 6
 // plastic strain, 7-12 half-step deviator). Accessed through the cell accessor of the layout.
@@ -325,8 +321,7 @@ struct SetStore {
     return ps.get(i, j, k);
   }
   KOKKOS_INLINE_FUNCTION Sym get_s(const mat::MixedCell& c, int slot, int, int, int) const {
-    const int q = c.first + slot;
-    return {sx[0](q), sx[1](q), sx[2](q), sx[3](q), sx[4](q), sx[5](q)};
+    return take(c.first + slot, 0);
   }
   KOKKOS_INLINE_FUNCTION void set_s(const mat::DenseCell&, int, int i, int j, int k,
                                     const Sym& t) const {
@@ -358,8 +353,7 @@ struct SetStore {
     return Sym{};  // (never called: a pure cell's material is alone)
   }
   KOKKOS_INLINE_FUNCTION Sym get_sh(const mat::MixedCell& c, int slot, int, int, int) const {
-    const int q = c.first + slot;
-    return {sx[7](q), sx[8](q), sx[9](q), sx[10](q), sx[11](q), sx[12](q)};
+    return take(c.first + slot, 7);
   }
   KOKKOS_INLINE_FUNCTION void set_sh(const mat::DenseCell&, int, int i, int j, int k,
                                      const Sym& t) const {
@@ -369,6 +363,9 @@ struct SetStore {
   KOKKOS_INLINE_FUNCTION void set_sh(const mat::MixedCell& c, int slot, int, int, int,
                                      const Sym& t) const {
     put(c.first + slot, 7, t);
+  }
+  KOKKOS_INLINE_FUNCTION Sym take(int q, int x0) const {
+    return {sx[x0](q), sx[x0 + 1](q), sx[x0 + 2](q), sx[x0 + 3](q), sx[x0 + 4](q), sx[x0 + 5](q)};
   }
   KOKKOS_INLINE_FUNCTION void put(int q, int x0, const Sym& t) const {
     sx[x0](q) = t.xx;
@@ -402,28 +399,27 @@ KOKKOS_INLINE_FUNCTION Real stress_power(const Sym& q, const Mat3& L) {
          q.yz * (L(1, 2) + L(2, 1)) + q.zx * (L(2, 0) + L(0, 2));
 }
 
-// The shear components change sign under the two reflections that flip them.
-constexpr int kParity[7][3] = {{1, 1, 1},   {1, 1, 1},   {1, 1, 1}, {-1, -1, 1},
-                               {1, -1, -1}, {-1, 1, -1}, {1, 1, 1}};
+// Set `set`'s store as the kernels launched now see it: its cell fields (dense), or the
+// pure-cell arrays, the current pool buffer set's slot extras and the half-step slot buffers.
+SetStore set_store(const StressSet& set, const mat::MaterialState* mm,
+                   const std::array<Field3, 7>& pure, const Buffer (&half)[6]) {
+  SetStore st;
+  st.mid = set.material;
+  if (mm->kind() == mat::LayoutKind::Compact) {
+    st.ps = SymField({pure[0], pure[1], pure[2], pure[3], pure[4], pure[5]});
+    st.pep = pure[6];
+    const mat::CompactDev& cd = mm->compact();
+    for (int x = 0; x < 7; ++x) st.sx[x] = cd.sx[x];
+    for (int x = 7; x < 13; ++x) st.sx[x] = half[x - 7];
+  } else {
+    st.s = SymField(set.s);
+    st.sh = SymField(set.s_half);
+    st.ep = set.eps_p;
+  }
+  return st;
+}
 
 }  // namespace
-
-// The store of set q as the kernels launched now see it (the pool's buffers are those of its
-// current buffer set).
-#define MP_SET_STORE(q)                                                             \
-  SetStore st;                                                                      \
-  st.mid = sets_[q].material;                                                       \
-  if (pooled_) {                                                                    \
-    st.ps = SymField({pure_[0], pure_[1], pure_[2], pure_[3], pure_[4], pure_[5]}); \
-    st.pep = pure_[6];                                                              \
-    const mat::CompactDev& cd = mm_->compact();                                     \
-    for (int x = 0; x < 7; ++x) st.sx[x] = cd.sx[x];                                \
-    for (int x = 7; x < 13; ++x) st.sx[x] = half_[x - 7];                           \
-  } else {                                                                          \
-    st.s = SymField(sets_[q].s);                                                    \
-    st.sh = SymField(sets_[q].s_half);                                              \
-    st.ep = sets_[q].eps_p;                                                         \
-  }
 
 void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const {
   const MaterialModels models = models_;
@@ -473,7 +469,7 @@ void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, R
         b = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "slot_stress_half"), cap);
   }
   for (int q = 0; q < sets(); ++q) {
-    MP_SET_STORE(q)
+    const SetStore st = set_store(sets_[q], mm_, pure_, half_);
     const int mid = st.mid;
     const bool first = q == 0;
     mm_->for_cells(
@@ -513,7 +509,7 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
   const SymField cs(cell_half_);
   const int ng = Mesh::ng;
   for (int q = 0; q < sets(); ++q) {
-    MP_SET_STORE(q)
+    const SetStore st = set_store(sets_[q], mm_, pure_, half_);
     const int mid = st.mid;
     mm_->for_cells(
         "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
@@ -530,7 +526,8 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
           // the work of the material's half-step deviator, alpha_m s_m : L V dt (its part of
           // the power the cell's nodal forces took), per unit mass of the material; a material
           // alone in its cell has the cell's half-step stress
-          const Sym half = holds_several(cell) ? st.get_sh(cell, slot, i, j, k) : cs.get(i, j, k);
+          const Sym half =
+              mat::holds_several(cell) ? st.get_sh(cell, slot, i, j, k) : cs.get(i, j, k);
           const Real power = stress_power(half, L);
           const Real r = *m.rho, en = *m.e;
           Real& ep = st.eps(cell, slot, i, j, k);
@@ -574,8 +571,6 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
         });
   }
 }
-
-#undef MP_SET_STORE
 
 // ------------------------------------------------------------------------------------------
 // Pooled sets (module.hpp, "Storage").
