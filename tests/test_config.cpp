@@ -295,6 +295,14 @@ TEST(Deck, MaterialsAndRegions) {
                {"deck.yaml:16:", "key 'numerics.solid_floor'", "out of range"});
   expect_holds(error_of(deck({{16, "  solid_floor: -0.1"}})),
                {"deck.yaml:16:", "key 'numerics.solid_floor'", "out of range"});
+  expect_holds(error_of(deck({{16, "  void_density: -1e-6"}})),
+               {"deck.yaml:16:", "key 'numerics.void_density'", "out of range"});
+  expect_holds(error_of(deck({{16, "  void_density: thin"}})),
+               {"deck.yaml:16:", "key 'numerics.void_density'"});
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).numerics.void_density, 0.0);
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck({{16, "  void_density: 1.0e-6"}}), "deck.yaml"))
+                .numerics.void_density,
+            1e-6);
   // the tension cutoff is a floor on tension: zero or below, a finite number
   expect_holds(
       error_of(deck({{21, "    gamma: 1.4\n    p_min: 1.0e-3"}})),

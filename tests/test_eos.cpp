@@ -190,6 +190,30 @@ TEST(Eos, TensionCutoffFloorsOnlyTheHydroPressure) {
             mp::eos::make_eos(mp::eos::StiffenedGas{4.4, 6e-3}).sound_speed2(rho, e_tension));
 }
 
+// The void density (numerics.void_density): below it the hydro sees no pressure and the floor's
+// sound speed; at and above it, and with it off (0, the default), exactly the EOS values. The
+// EOS itself (pressure, sound_speed) never changes.
+TEST(Eos, VoidDensityRemovesPressureAndSoundOnlyBelowIt) {
+  Eos air = mp::eos::make_eos(mp::eos::IdealGas{1.4});
+  const double hot_vacuum = 1e-11, e = 2.4e6;  // the perforator's air wake (docs/perforator.md)
+  const Real p = air.pressure(hot_vacuum, e), c = air.sound_speed(hot_vacuum, e);
+  ASSERT_GT(p, 0.0);
+  ASSERT_GT(c, 1000.0);                           // cm/us: this is what set a 3e-5 us step
+  EXPECT_EQ(air.pressure_cut(hot_vacuum, e), p);  // off: the EOS values, bit for bit
+  EXPECT_EQ(air.sound_speed_cut(hot_vacuum, e), c);
+  air.rho_void = Real(1e-6);
+  EXPECT_EQ(air.pressure_cut(hot_vacuum, e), Real(0));
+  EXPECT_EQ(air.sound_speed_cut(hot_vacuum, e), Real(1e-12));  // sqrt(kSoundSpeed2Floor)
+  EXPECT_EQ(air.pressure(hot_vacuum, e), p);                   // the EOS is unchanged
+  EXPECT_EQ(air.sound_speed(hot_vacuum, e), c);
+  for (double rho : {1e-6, 1.225e-3}) {  // at the void density and above: the EOS values
+    EXPECT_EQ(air.pressure_cut(rho, 2.0), air.pressure(rho, 2.0)) << rho;
+    EXPECT_EQ(air.sound_speed_cut(rho, 2.0), air.sound_speed(rho, 2.0)) << rho;
+  }
+  // a NaN state stays NaN for the health check
+  EXPECT_TRUE(std::isnan(double(air.pressure_cut(std::nan(""), e))));
+}
+
 TEST(Eos, MieGruneisenHugoniotReproducesUsUpLine) {
   int materials = 0;
   for (const auto& name : mp::materials::material_names()) {

@@ -36,6 +36,13 @@ struct Eos {
   // holds such a material at p_min instead (docs/numerics.md, "Tension cutoff"). The EOS
   // itself (pressure, sound_speed2) is unchanged; only pressure_cut applies it.
   Real p_min = kNoTensionCutoff;
+  // Void density (g/cm^3, numerics.void_density; 0: off): below it a material exerts no pressure
+  // and carries no sound in the hydro (pressure_cut, sound_speed_cut), as a vacuum would. Gas
+  // drawn down to near vacuum behind a fast body is heated by the remap (it spreads the mass it
+  // moves over the receiving cell without the work of expansion; docs/numerics.md, "LeBlanc
+  // and near vacuum"), and its sound speed then sets the step (docs/perforator.md, air in the
+  // well). Its mass and energy stay where they are: nothing is removed or changed.
+  Real rho_void = 0;
 
   KOKKOS_INLINE_FUNCTION Real pressure(Real rho, Real e) const {
     switch (kind) {
@@ -54,6 +61,7 @@ struct Eos {
   // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min. A NaN stays NaN
   // (the health check must still see a broken EOS state), so no mmax here.
   KOKKOS_INLINE_FUNCTION Real pressure_cut(Real rho, Real e) const {
+    if (rho < rho_void && rho_void > 0) return 0;  // (off: a negative rho keeps its p)
     const Real p = pressure(rho, e);
     return p < p_min ? p_min : p;
   }
@@ -76,6 +84,10 @@ struct Eos {
   // c, with c^2 clamped to kSoundSpeed2Floor: finite and positive for every finite (rho > 0, e).
   KOKKOS_INLINE_FUNCTION Real sound_speed(Real rho, Real e) const {
     return msqrt(mmax(sound_speed2(rho, e), kSoundSpeed2Floor));
+  }
+  // The sound speed the hydro uses: that of the floor below the void density, else sound_speed.
+  KOKKOS_INLINE_FUNCTION Real sound_speed_cut(Real rho, Real e) const {
+    return rho < rho_void && rho_void > 0 ? msqrt(kSoundSpeed2Floor) : sound_speed(rho, e);
   }
 
   // The lowest specific energy the health check accepts in a mixed cell. A Mie-Grueneisen

@@ -165,7 +165,7 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
   Kokkos::parallel_for(
       "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
         p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
-        c(i, j, k) = eos.sound_speed(rho(i, j, k), e(i, j, k));
+        c(i, j, k) = eos.sound_speed_cut(rho(i, j, k), e(i, j, k));
       });
   if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
   if (burn_) {

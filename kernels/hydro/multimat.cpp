@@ -385,7 +385,7 @@ void Hydro::mm_equation_of_state() const {
             unburnt = f < 1;
           } else {
             pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
-            cm = mats.eos[m.m].sound_speed(*m.rho, *m.e);
+            cm = mats.eos[m.m].sound_speed_cut(*m.rho, *m.e);
             if (m.m == bh.material) {
               const Real f = bh.f(i, j, k);
               pm *= f;

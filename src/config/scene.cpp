@@ -530,9 +530,11 @@ Scene read_scene(const Deck& deck) {
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
     n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples", "layout", "interface",
-                   "min_fraction", "closure", "relaxation_iterations", "solid_floor"});
+                   "min_fraction", "closure", "relaxation_iterations", "solid_floor",
+                   "void_density"});
     s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
     s.numerics.solid_floor = n.get_real("solid_floor", 0, 0.99, s.numerics.solid_floor);
+    s.numerics.void_density = n.get_real("void_density", 0, 1.0, s.numerics.void_density);
     s.numerics.relaxation_iterations = static_cast<int>(
         n.get_int("relaxation_iterations", 1, 1000, s.numerics.relaxation_iterations));
     s.numerics.layout = n.get_enum("layout", {"compact", "dense"}, s.numerics.layout);

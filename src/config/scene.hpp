@@ -98,7 +98,8 @@ struct NumericsSpec {
   double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
   std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
   int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
-  double solid_floor = 0;  // mixed cells: least rho/rho0 of a Mie-Grueneisen material (0: none)
+  double void_density = 0;  // g/cm^3: below it a material has no pressure, no sound (0: off)
+  double solid_floor = 0;   // mixed cells: least rho/rho0 of a Mie-Grueneisen material (0: none)
 };
 
 struct OutputSpec {

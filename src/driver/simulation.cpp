@@ -217,7 +217,7 @@ void make_dirs(const std::string& dir) {
   }
 }
 
-eos::Eos material_eos(const MaterialSpec& m) {
+eos::Eos material_eos(const MaterialSpec& m, double void_density) {
   materials::MaterialData d;
   d.name = m.name;
   d.eos = m.eos;
@@ -225,6 +225,7 @@ eos::Eos material_eos(const MaterialSpec& m) {
   for (const auto& [k, v] : m.params) d.params[k] = Real(v);
   eos::Eos eos = materials::make_eos(d);
   if (m.has_p_min) eos.p_min = Real(m.p_min);
+  eos.rho_void = Real(void_density);
   return eos;
 }
 
@@ -333,7 +334,8 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
     }
   }
   std::vector<eos::Eos> eos;
-  for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
+  for (const auto& m : scene_.materials)
+    eos.push_back(material_eos(m, scene_.numerics.void_density));
   hydro_ = std::make_unique<hydro::Hydro>(*mesh_, *halo_, opt, eos);
 }
 
@@ -345,6 +347,12 @@ std::vector<std::string> Simulation::modules() const {
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
               " advection, " + scene_.numerics.remap + " remap");
+  if (scene_.numerics.void_density > 0) {
+    std::ostringstream os;
+    os << "void: a material below " << scene_.numerics.void_density
+       << " g/cm3 has no pressure and no sound speed (numerics.void_density)";
+    m.push_back(os.str());
+  }
   for (const MaterialSpec& mat : scene_.materials) {
     std::string eos = "eos: " + mat.eos + " (" + mat.name;
     if (!mat.library.empty()) eos += ", library '" + mat.library + "'";
@@ -419,7 +427,8 @@ std::vector<std::string> Simulation::modules() const {
 void Simulation::initialize() {
   std::vector<RegionDev> regs;
   std::vector<eos::Eos> eos;
-  for (const auto& m : scene_.materials) eos.push_back(material_eos(m));
+  for (const auto& m : scene_.materials)
+    eos.push_back(material_eos(m, scene_.numerics.void_density));
   for (const auto& r : scene_.regions) {
     RegionDev d{};
     d.shape = r.shape.shape;
