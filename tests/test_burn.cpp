@@ -585,6 +585,44 @@ TEST(BurnFraction, MixtureClosure) {
               1.0, roundoff(1e-14));
 }
 
+// numerics.void_density reaches the mixture closure too: below it the explosive has no pressure
+// and the floor's sound speed at every burn fraction; at and above it, and with it off, the
+// closure's values bit for bit (the products' EOS carries the void density, as the driver sets
+// it on every material's EOS).
+TEST(BurnFraction, MixtureClosureVoidDensity) {
+  const auto* m = mp::materials::find_material("pbx9404_products");
+  auto prod = mp::materials::make_eos(*m);
+  const auto solid = mp::materials::make_eos(*mp::materials::find_material("pbx9404_unreacted"));
+  const Real e0 = Real(m->param("E0") / m->rho0);
+  const Real thin = Real(1e-7), e = e0 + Real(0.5);  // expanded, hot: p > 0, c well above 0
+  std::vector<Real> p_off, c_off;
+  for (double f : {0.0, 0.5, 1.0}) {
+    p_off.push_back(mp::burn::he_pressure_mixed_cut(solid, prod, e0, Real(f), thin, e));
+    c_off.push_back(mp::burn::he_sound_speed_mixed(solid, prod, e0, Real(f), thin, e));
+    EXPECT_EQ(p_off.back(), mp::burn::he_pressure_mixed(solid, prod, e0, Real(f), thin, e));
+    EXPECT_GT(c_off.back(), Real(1e-6)) << f;  // the closure's own, not the floor
+  }
+  EXPECT_GT(p_off[2], Real(0));
+  prod.rho_void = Real(1e-6);
+  for (int n = 0; n < 3; ++n) {
+    const Real f = Real(0.5 * n);
+    EXPECT_EQ(mp::burn::he_pressure_mixed_cut(solid, prod, e0, f, thin, e), Real(0)) << f;
+    EXPECT_EQ(mp::burn::he_sound_speed_mixed(solid, prod, e0, f, thin, e),
+              std::sqrt(mp::eos::kSoundSpeed2Floor))
+        << f;
+    for (Real rho : {Real(1e-6), Real(1.0)}) {  // at the void density and above: unchanged
+      auto off = prod;
+      off.rho_void = 0;
+      EXPECT_EQ(mp::burn::he_pressure_mixed_cut(solid, prod, e0, f, rho, e),
+                mp::burn::he_pressure_mixed_cut(solid, off, e0, f, rho, e))
+          << f << " " << rho;
+      EXPECT_EQ(mp::burn::he_sound_speed_mixed(solid, prod, e0, f, rho, e),
+                mp::burn::he_sound_speed_mixed(solid, off, e0, f, rho, e))
+          << f << " " << rho;
+    }
+  }
+}
+
 // The point functions run in a named device kernel and give the host's numbers bit for bit.
 // (In an OpenMP build the kernel runs on the host CPU: this checks that the functions compile
 // and dispatch inside a kernel; only a GPU build compares a device's arithmetic.)

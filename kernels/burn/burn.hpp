@@ -165,15 +165,20 @@ KOKKOS_INLINE_FUNCTION Real he_sound_speed2_mixed(const eos::Eos& unreacted,
 
 // What the cycle uses (module.hpp mixed()): he_pressure_mixed with each phase's tension cutoff
 // (eos.hpp pressure_cut; equal to he_pressure_mixed where neither phase has one), and the
-// frozen-F sound speed floored as the EOS module floors its own.
+// frozen-F sound speed floored as the EOS module floors its own. Below the void density
+// (numerics.void_density, carried by the products' EOS, the explosive material's own) the
+// explosive has no pressure and the floor's sound speed whatever its burn fraction, as every
+// other material (eos.hpp pressure_cut, sound_speed_cut).
 KOKKOS_INLINE_FUNCTION Real he_pressure_mixed_cut(const eos::Eos& unreacted,
                                                   const eos::Eos& products, Real e0, Real f,
                                                   Real rho, Real e) {
+  if (products.is_void(rho)) return 0;
   return (1 - f) * unreacted.pressure_cut(rho, e - e0) + f * products.pressure_cut(rho, e);
 }
 KOKKOS_INLINE_FUNCTION Real he_sound_speed_mixed(const eos::Eos& unreacted,
                                                  const eos::Eos& products, Real e0, Real f,
                                                  Real rho, Real e) {
+  if (products.is_void(rho)) return msqrt(eos::kSoundSpeed2Floor);
   return msqrt(
       mmax(he_sound_speed2_mixed(unreacted, products, e0, f, rho, e), eos::kSoundSpeed2Floor));
 }

@@ -43,6 +43,8 @@ struct Eos {
   // and near vacuum"), and its sound speed then sets the step (docs/perforator.md, air in the
   // well). Its mass and energy stay where they are: nothing is removed or changed.
   Real rho_void = 0;
+  // True below the void density (never when it is off; a negative rho is not void).
+  KOKKOS_INLINE_FUNCTION bool is_void(Real rho) const { return rho < rho_void && rho_void > 0; }
 
   KOKKOS_INLINE_FUNCTION Real pressure(Real rho, Real e) const {
     switch (kind) {
@@ -61,7 +63,7 @@ struct Eos {
   // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min. A NaN stays NaN
   // (the health check must still see a broken EOS state), so no mmax here.
   KOKKOS_INLINE_FUNCTION Real pressure_cut(Real rho, Real e) const {
-    if (rho < rho_void && rho_void > 0) return 0;  // (off: a negative rho keeps its p)
+    if (is_void(rho)) return 0;  // (off: a negative rho keeps its p)
     const Real p = pressure(rho, e);
     return p < p_min ? p_min : p;
   }
@@ -87,7 +89,7 @@ struct Eos {
   }
   // The sound speed the hydro uses: that of the floor below the void density, else sound_speed.
   KOKKOS_INLINE_FUNCTION Real sound_speed_cut(Real rho, Real e) const {
-    return rho < rho_void && rho_void > 0 ? msqrt(kSoundSpeed2Floor) : sound_speed(rho, e);
+    return is_void(rho) ? msqrt(kSoundSpeed2Floor) : sound_speed(rho, e);
   }
 
   // The lowest specific energy the health check accepts in a mixed cell. A Mie-Grueneisen
