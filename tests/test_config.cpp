@@ -186,6 +186,13 @@ TEST(Deck, EnumerationErrors) {
        "'reflect' is not one of: reflective, outflow, periodic", "did you mean 'reflective'"});
   expect_holds(error_of(deck({{10, "  z: {lo: outflow, hi: periodc}"}})),
                {"deck.yaml:10:", "key 'boundaries.z.hi'", "did you mean 'periodic'"});
+  expect_holds(
+      error_of(deck({{16, "  ke_fix_share: by_mass"}})),
+      {"deck.yaml:16:", "key 'numerics.ke_fix_share'", "'by_mass' is not one of: mass, equal"});
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).numerics.ke_fix_share, "mass");
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck({{16, "  ke_fix_share: equal"}}), "deck.yaml"))
+                .numerics.ke_fix_share,
+            "equal");
   expect_holds(error_of(deck({{20, "    eos: ideal"}})),
                {"deck.yaml:20:", "key 'materials.0.eos'", "'ideal' is not one of: ideal_gas"});
   expect_holds(error_of(deck({{28, "    shape: cube"}})),

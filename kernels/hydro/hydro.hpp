@@ -88,6 +88,11 @@ struct Options {
   // energy (DeBar's correction, see Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992),
   // so total energy is conserved to round-off.
   bool ke_fix = true;
+  // Multi-material scenes: a node's loss goes to its 8 cells in proportion to their mass (every
+  // cell takes the same specific energy; numerics.ke_fix_share: mass, the default) or an eighth
+  // to each (equal, the rule before 2026-12-03). Single-material scenes have their own budget
+  // (ke_fix_share() above) and ignore it.
+  bool ke_fix_by_mass = true;
   // One remap step over all axes instead of three split sweeps (symmetric under permutations
   // of the axes; the time step then keeps the sum of the axes' Courant numbers below cfl).
   bool unsplit = false;

@@ -643,14 +643,18 @@ Hydro::Carrier Hydro::carrier(int slot) const {
 
 void Hydro::mm_ke_fix() {
   auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol;
+  const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
   mm_->for_cells(
       "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        // kel: each node's loss per unit mass of its 8 cells (remap.cpp, by_mass), so the cell
+        // takes the sum over its corners as specific energy; or (equal shares) the node's loss,
+        // of which the cell takes an eighth. The same specific energy to every material keeps
+        // the cell average consistent; where it is taken away (< 0), no material gives more
+        // than ke_fix_floor allows
         const Real sum = corner_sum(kel, i, j, k);
-        // the same specific energy to every material keeps the cell average consistent; where
-        // it is taken away (sum < 0), no material gives more than ke_fix_floor allows
-        Real de = Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+        Real de = by_mass ? sum : Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
         for (int s = 0; s < cell.count(); ++s) {
           const MatRef m = cell.get(s);
           if (m.alpha > 0) de = mmax(de, ke_fix_floor(*m.e));

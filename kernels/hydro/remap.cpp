@@ -263,6 +263,13 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
   // it, so a node by a rank boundary would weigh stale ghosts (1/2/4 ranks would differ); they
   // keep the full form and the equal shares.
   const bool weigh = opt_.ke_fix && !mm_;
+  // Multi-material scenes share a node's loss among its 8 cells by their mass (the default,
+  // numerics.ke_fix_share: mass; else an eighth each, kel holding the loss): kel holds the
+  // loss per unit mass of the node's cells, L / (8 m_node), and every cell around the node takes
+  // that specific energy (mm_ke_fix), so a light cell beside heavy moving ones (air at a copper
+  // jet) is not handed an eighth of the heavy nodes' loss. The 8 cells' masses sum to 8 m_node
+  // to round-off (the dual-face fluxes are the cells' own), so total energy is kept.
+  const bool by_mass = opt_.ke_fix && mm_ && opt_.ke_fix_by_mass;
   auto finish = [=] KOKKOS_FUNCTION(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
                                     const DualUpdate& du) {
     const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
@@ -272,6 +279,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
     const Real ke1 = Real(0.5) * du.m1 * (u1 * u1 + v1 * v1 + w1 * w1);
     const Real loss = ke0 + du.ke_flux - ke1;
+    if (by_mass) {
+      kel(i, j, k) = du.m1 > 0 ? loss / (8 * du.m1) : Real(0);
+      return;
+    }
     if (!weigh || loss >= 0) {
       kel(i, j, k) = loss;
       return;

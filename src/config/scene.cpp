@@ -529,8 +529,8 @@ Scene read_scene(const Deck& deck) {
 
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
-    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "samples", "layout", "interface",
-                   "min_fraction", "closure", "relaxation_iterations", "solid_floor",
+    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "ke_fix_share", "samples", "layout",
+                   "interface", "min_fraction", "closure", "relaxation_iterations", "solid_floor",
                    "void_density"});
     s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
     s.numerics.solid_floor = n.get_real("solid_floor", 0, 0.99, s.numerics.solid_floor);
@@ -544,6 +544,8 @@ Scene read_scene(const Deck& deck) {
     s.numerics.samples = static_cast<int>(n.get_int("samples", 1, 16, s.numerics.samples));
     s.numerics.remap = n.get_enum("remap", {"split", "unsplit"}, s.numerics.remap);
     s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
+    s.numerics.ke_fix_share =
+        n.get_enum("ke_fix_share", {"mass", "equal"}, s.numerics.ke_fix_share);
     s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
     if (n.has("viscosity")) {
       const DeckNode q = n.child("viscosity");

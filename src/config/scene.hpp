@@ -87,15 +87,16 @@ struct TimeSpec {
 };
 
 struct NumericsSpec {
-  std::string advection = "second";  // second | first
-  std::string remap = "split";       // split (alternating sweeps) | unsplit
-  double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
-  double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
-  bool ke_fix = true;                // return the kinetic energy the momentum remap dissipates
-  int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
-  std::string layout = "compact";    // per-material storage: compact | dense
-  std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
-  double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
+  std::string advection = "second";   // second | first
+  std::string remap = "split";        // split (alternating sweeps) | unsplit
+  double q_linear = 0.2;              // linear (Landshoff) artificial viscosity coefficient
+  double q_quadratic = 0.75;          // quadratic (von Neumann–Richtmyer) coefficient
+  bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
+  std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
+  int samples = 4;                    // sub-cell samples per axis for the initial volume fractions
+  std::string layout = "compact";     // per-material storage: compact | dense
+  std::string interface = "youngs";   // material fluxes: youngs (PLIC) | slic | none
+  double min_fraction = 1e-14;        // a material below this volume fraction leaves a cell
   std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
   int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
   double void_density = 0;  // g/cm^3: below it a material has no pressure, no sound (0: off)

@@ -305,6 +305,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.growth = Real(scene_.time.growth);
   opt.dt_max = Real(scene_.time.dt_max);
   opt.ke_fix = scene_.numerics.ke_fix;
+  opt.ke_fix_by_mass = scene_.numerics.ke_fix_share == "mass";
   opt.unsplit = scene_.numerics.remap == "unsplit";
   opt.layout =
       scene_.numerics.layout == "dense" ? mat::LayoutKind::Dense : mat::LayoutKind::Compact;
@@ -346,7 +347,12 @@ std::vector<std::string> Simulation::modules() const {
   m.push_back("hydro: staggered Lagrange (predictor-corrector) + split remap, " +
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
-              " advection, " + scene_.numerics.remap + " remap");
+              " advection, " + scene_.numerics.remap + " remap, KE fix " +
+              (!scene_.numerics.ke_fix       ? std::string("off")
+               : scene_.materials.size() < 2 ? std::string("on")
+               : scene_.numerics.ke_fix_share == "mass"
+                   ? std::string("on (a node's loss shared by its cells' mass)")
+                   : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")));
   if (scene_.numerics.void_density > 0) {
     std::ostringstream os;
     os << "void: a material below " << scene_.numerics.void_density
