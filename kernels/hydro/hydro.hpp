@@ -138,6 +138,7 @@ struct State {
   Field3 ub, vb, wb;  // time-centred velocity of the Lagrangian step
   Field3 node_mass;   // remap scratch: nodal (dual-cell) mass before a sweep
   Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
+                      // (multi-material, shares by mass: over 8 times the node's mass)
   // remap scratch of a split sweep: mass flux and upwind velocities of the dual face above
   // each node along the sweep's axis
   Field3 dual_flux, dual_u, dual_v, dual_w, dual_k;  // dual_k: kinetic energy carried per unit mass
