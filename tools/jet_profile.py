@@ -70,13 +70,14 @@ def main():
     a = ap.parse_args()
     rows = []
     first = None
-    for t, _, path in dumps.list_dumps(TOOL, a.run):
+    listed = dumps.list_dumps(TOOL, a.run)
+    for t, _, path in listed:
         d = dumps.Dump(TOOL, path)
         r = profile(d, a.axis_y, a.axis_z, a.speeds)
         rows.append(r)
         if first is None and r["tip_x"] is not None and r["tip_x"] > a.wall_x:
             first = r["time"]
-    d0 = dumps.Dump(TOOL, dumps.list_dumps(TOOL, a.run)[0][2])
+    d0 = dumps.Dump(TOOL, listed[0][2])
     out = {"run": a.run, "cells": [int(c) for c in d0.cells], "spacing": list(d0.spacing),
            "axis": [a.axis_y, a.axis_z], "speeds": a.speeds, "wall_x": a.wall_x,
            "through_wall_time": first, "dumps": rows}
