@@ -10,8 +10,28 @@ kokkos_line=$(bash "${here}/ci/setup.sh" | tail -n 1)
 kokkos_root="${kokkos_line#KOKKOS_ROOT=}"
 
 jobs=$(nproc)
-if [ ! -f "${build}/CMakeCache.txt" ] || [ $# -gt 0 ]; then
-  cmake -S "${here}" -B "${build}" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="${kokkos_root}" "$@"
+# Compiler cache (Debian's ccache, installed by ci/setup.sh): a fresh clone on a machine that
+# built minipagosa before compiles only what changed. CCACHE_BASEDIR makes the paths under the
+# clone relative, so clones in different directories share entries; an entry is keyed by the
+# preprocessed source and the compiler's command line, so a hit is the object a compile would
+# give. MINIPAGOSA_NO_CCACHE=1 compiles everything.
+want=0 launcher=(-UCMAKE_CXX_COMPILER_LAUNCHER -UCMAKE_C_COMPILER_LAUNCHER)
+if [ "${MINIPAGOSA_NO_CCACHE:-0}" != 1 ] && command -v ccache >/dev/null 2>&1; then
+  want=1 launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+  export CCACHE_BASEDIR="${here}"
+  ccache --zero-stats >/dev/null
+fi
+have=0
+if grep -q '^CMAKE_CXX_COMPILER_LAUNCHER:.*=ccache$' "${build}/CMakeCache.txt" 2>/dev/null; then
+  have=1
+fi
+if [ ! -f "${build}/CMakeCache.txt" ] || [ $# -gt 0 ] || [ "${want}" != "${have}" ]; then
+  cmake -S "${here}" -B "${build}" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="${kokkos_root}" \
+    "${launcher[@]}" "$@"
 fi
 cmake --build "${build}" -j "${jobs}"
+if [ "${want}" = 1 ]; then
+  echo "[build] ccache for this build: $(ccache --show-stats | grep -E '^ *(Hits|Misses):' |
+    tr -s ' ' | paste -sd ';')" >&2
+fi
 echo "[build] minipagosa built in ${build} against Kokkos at ${kokkos_root}" >&2

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs what minipagosa needs on Debian 12 and reuses what is already there.
 #   - Debian packages: Open MPI, parallel HDF5, yaml-cpp, CLI11, nlohmann-json, GoogleTest,
-#     Google Benchmark, Python numpy/h5py/matplotlib (only the missing ones are installed).
+#     Google Benchmark, Python numpy/h5py/matplotlib, ccache (only the missing ones are installed).
 #   - Kokkos with the OpenMP and Serial backends, built from packages/kokkos of Debian's
 #     `trilinos` source package into a cache prefix outside the repository (DESIGN.md §1).
 #     Debian's binary Trilinos Kokkos is Serial-only and is never used.
@@ -15,7 +15,7 @@ SUDO=""
 if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
 
 packages=(
-  g++ cmake make dpkg-dev xz-utils
+  g++ cmake make dpkg-dev xz-utils ccache
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-h5py python3-matplotlib

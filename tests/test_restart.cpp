@@ -5,11 +5,14 @@
 // on 2 ranks, 2 -> 4 on 4), in the dense and the compact layout, on the three-material triple
 // point. A checkpoint from another deck or another build is refused naming what differs.
 #include <gtest/gtest.h>
+
 #include <stdlib.h>
+#include <functional>
 
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -404,21 +407,26 @@ TEST(RestartRefusal, AllowPatternsOnlyForNumericsAndTime) {
   }
 }
 
-TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
-  SharedDir dir;
-  const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);
-  // Rewrite the metadata as a build of the other precision would have written it.
-  const std::string other = sizeof(Real) == 8 ? "float" : "double";
+// Rewrites a checkpoint's metadata on rank 0 (as another build would have written it).
+void edit_meta(const std::string& ckpt, const std::function<void(nlohmann::json&)>& edit) {
   if (world_rank() == 0) {
     h5::Handle file;
     HDF5_CHECK(file.reset(H5Fopen(ckpt.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), H5Fclose));
     auto meta = nlohmann::json::parse(h5::read_string_attribute(file.get(), "meta"));
-    meta["real"] = other;
+    edit(meta);
     HDF5_CHECK(H5Adelete(file.get(), "meta"));
     h5::write_string_attribute(file.get(), "meta", meta.dump());
     HDF5_CHECK(file.close());
   }
   MPI_Barrier(MPI_COMM_WORLD);
+}
+
+TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
+  SharedDir dir;
+  const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);
+  // Rewrite the metadata as a build of the other precision would have written it.
+  const std::string other = sizeof(Real) == 8 ? "float" : "double";
+  edit_meta(ckpt, [&](nlohmann::json& m) { m["real"] = other; });
   RunSettings settings;
   settings.quiet = true;
   Simulation sim(test::load_scene("triple_point.yaml", deck("compact")), MPI_COMM_WORLD, settings);
@@ -430,6 +438,72 @@ TEST(RestartRefusal, AnotherBuildIsRefusedNamingIt) {
     if (world_rank() == 0) std::printf("  refused: %s\n", msg.c_str());
     EXPECT_NE(msg.find("with Real = " + other), std::string::npos) << msg;
   }
+}
+
+// A checkpoint records the numerics as resolved, defaults included: a build whose default
+// differs (here the KE fix's shares, whose default became `mass` on 2026-12-03) is refused
+// although neither deck names the key; --restart-allow takes the change. Setting a key to the
+// value the checkpoint resolved is no difference. (Until 2026-12-03 only the deck's own keys
+// were compared, and such a restart changed the numerics silently.)
+TEST(RestartRefusal, ChangedDefaultIsRefusedNamingTheKey) {
+  SharedDir dir;
+  const std::string ckpt = run_to_checkpoint(triple_point("compact"), 5, MPI_COMM_WORLD, dir.path);
+  RunSettings settings;
+  settings.quiet = true;
+  {  // the key set to the default it resolved to: accepted, no change reported
+    auto d = deck("compact");
+    d.push_back("numerics.ke_fix_share=mass");
+    Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+    sim.restart(ckpt);
+    const RunResult r = sim.run();
+    EXPECT_TRUE(r.ok);
+    EXPECT_TRUE(r.restart_changes.empty());
+  }
+  edit_meta(ckpt, [](nlohmann::json& m) {
+    ASSERT_TRUE(m.contains("resolved"));
+    ASSERT_EQ(m["resolved"]["numerics.ke_fix_share"], "mass");
+    m["resolved"]["numerics.ke_fix_share"] = "equal";
+  });
+  const std::string line =
+      "numerics.ke_fix_share: 'equal' in the checkpoint, 'mass' (this build's default) here";
+  {
+    Simulation sim(test::load_scene("triple_point.yaml", deck("compact")), MPI_COMM_WORLD,
+                   settings);
+    const std::string msg = refusal(sim, ckpt);
+    EXPECT_NE(msg.find(line), std::string::npos) << msg;
+    EXPECT_NE(msg.find("1 difference;"), std::string::npos) << msg;
+  }
+  settings.restart_allow = {"numerics.ke_fix_share"};
+  Simulation sim(test::load_scene("triple_point.yaml", deck("compact")), MPI_COMM_WORLD, settings);
+  sim.restart(ckpt);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.ok);
+  ASSERT_EQ(r.restart_changes.size(), 1u);
+  EXPECT_EQ(r.restart_changes[0], line);
+}
+
+// A checkpoint written before the resolved numerics were recorded restarts (its deck's own
+// keys are still compared) and continues the same solution bit for bit.
+TEST(RestartRefusal, CheckpointWithoutResolvedNumericsStillRestarts) {
+  SharedDir dir;
+  const Case c = triple_point("compact");
+  const std::string ckpt = run_to_checkpoint(c, 5, MPI_COMM_WORLD, dir.path);
+  edit_meta(ckpt, [](nlohmann::json& m) { m.erase("resolved"); });
+  RunSettings settings;
+  settings.quiet = true;
+  {
+    auto d = deck("compact");
+    d.push_back("time.cfl=0.4");
+    Simulation sim(test::load_scene("triple_point.yaml", d), MPI_COMM_WORLD, settings);
+    const std::string msg = refusal(sim, ckpt);
+    EXPECT_NE(msg.find("time.cfl: '0.5' in the checkpoint, '0.4' here"), std::string::npos) << msg;
+  }
+  Simulation sim(test::load_scene("triple_point.yaml", deck("compact")), MPI_COMM_WORLD, settings);
+  sim.restart(ckpt);
+  const RunResult r = sim.run();
+  EXPECT_TRUE(r.ok);
+  EXPECT_TRUE(r.restart_changes.empty());
+  expect_identical(straight_run(c), snapshot(sim), "restart without resolved numerics");
 }
 
 TEST(Checkpoints, KeepsTheNewest) {

@@ -1,7 +1,8 @@
 // Taylor anvil (issue #12): the OFHC copper cylinder of Johnson & Cook (1983) at 190 m/s onto a
 // rigid wall (configs/taylor_anvil.yaml), recovered length and footprint diameter against the
 // experiment (tests/exact/taylor_data.hpp), with both flow-stress models of the library
-// (Johnson-Cook, Steinberg-Guinan, Zerilli-Armstrong), at R/6 and R/8 cells.
+// (Johnson-Cook, Steinberg-Guinan, Zerilli-Armstrong) at R/8 cells, and Zerilli-Armstrong also
+// at R/6, whose footprint error must fall from R/6 to R/8.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -19,8 +20,10 @@ namespace tx = mp::exact::taylor;
 namespace {
 
 constexpr double kRadius = 0.5 * tx::kDiameter0;  // cm
-// Cells across the radius of the two runs (the assertions at kFine): R/8 runs 1450-1670 cycles
-// of 18x18x56 cells, 25 s at 1 Mcell-cycle/s, 4 min on this loaded 2-core machine.
+// Cells across the radius of the two runs (the bounds at kFine): R/8 runs 1450-1670 cycles of
+// 18x18x56 cells, 25 s at 1 Mcell-cycle/s, 4 min on this loaded 2-core machine. An R/6 run
+// costs a third of that; the suite runs it for Zerilli-Armstrong only (until 2026-12-03 for all
+// three, printed, not asserted: JC and SG at R/6 are in docs/numerics.md "Taylor anvil").
 constexpr int kCoarse = 6, kFine = 8;
 
 struct TaylorRun {
@@ -84,15 +87,21 @@ void print(const char* model, int n, const TaylorRun& r) {
       s.footprint_area, 100 * err(s.footprint_area, tx::kFootprintDiameter), r.ke_left, r.cu_lost);
 }
 
-// Both resolutions of one model; the assertions at the finer one.
-void check_model(const char* model, double length_bound, double footprint_bound) {
+// One model at R/8, the bounds there; with `coarse`, R/6 first, and the footprint error must
+// fall from R/6 to R/8 (returned through *footprint_errors, R/6 then R/8).
+void check_model(const char* model, double length_bound, double footprint_bound,
+                 bool coarse = false, double* footprint_errors = nullptr) {
   if (rank0())
     std::printf(
         "taylor experiment (Johnson & Cook 1983): L0 %.3f cm, D0 %.3f cm, %.0f m/s -> "
         "L %.4f cm, footprint D %.4f cm\n",
         tx::kLength0, tx::kDiameter0, tx::kSpeed * 1e4, tx::kLengthFinal, tx::kFootprintDiameter);
-  const TaylorRun coarse = run_taylor(model, kCoarse);
-  if (coarse.ok) print(model, kCoarse, coarse);
+  TaylorRun low;
+  if (coarse) {
+    low = run_taylor(model, kCoarse);
+    ASSERT_TRUE(low.ok);
+    print(model, kCoarse, low);
+  }
   const TaylorRun fine = run_taylor(model, kFine);
   ASSERT_TRUE(fine.ok);
   print(model, kFine, fine);
@@ -120,6 +129,10 @@ void check_model(const char* model, double length_bound, double footprint_bound)
                 100 * el, 100 * ed);
   EXPECT_LT(std::abs(el), length_bound) << model;
   EXPECT_LT(std::abs(ed), footprint_bound) << model;
+  if (coarse && footprint_errors) {
+    footprint_errors[0] = err(low.shape.footprint, tx::kFootprintDiameter);
+    footprint_errors[1] = ed;
+  }
 }
 
 }  // namespace
@@ -135,6 +148,10 @@ TEST(Taylor, SteinbergGuinanCopperMatchesTheExperiment) {
 // Zerilli & Armstrong's (1987) copper, the model its authors checked against these cylinders.
 // Measured 2026-12-02 (1 thread, double and float alike): R/6 L +2.60 %, D -4.14 %; R/8 L
 // +2.93 %, D -1.88 %. Bounds: the R/8 errors plus ~1.5 / ~2 points, inside the issue's 5 %.
+// The footprint's error falls with the zone (the length's, within its 0.3-point measuring
+// rounding, does not: +2.60 -> +2.93 %): asserted at 0.8 of the R/6 error (0.45 observed).
 TEST(Taylor, ZerilliArmstrongCopperMatchesTheExperiment) {
-  check_model("zerilli_armstrong", 0.045, 0.04);
+  double ed[2] = {NAN, NAN};
+  check_model("zerilli_armstrong", 0.045, 0.04, true, ed);
+  EXPECT_LT(std::abs(ed[1]), 0.8 * std::abs(ed[0]));
 }

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 
@@ -498,6 +500,33 @@ void read_regions(const DeckNode& root, Scene& s) {
 }
 
 }  // namespace
+
+std::map<std::string, std::string> resolved_numerics(const Scene& s) {
+  const auto real = [](double x) {  // the shortest of 15 or 17 digits that reads back as x
+    char b[32];
+    std::snprintf(b, sizeof b, "%.15g", x);
+    if (std::strtod(b, nullptr) != x) std::snprintf(b, sizeof b, "%.17g", x);
+    return std::string(b);
+  };
+  const NumericsSpec& n = s.numerics;
+  return {{"numerics.advection", n.advection},
+          {"numerics.remap", n.remap},
+          {"numerics.viscosity.linear", real(n.q_linear)},
+          {"numerics.viscosity.quadratic", real(n.q_quadratic)},
+          {"numerics.ke_fix", n.ke_fix ? "true" : "false"},
+          {"numerics.ke_fix_share", n.ke_fix_share},
+          {"numerics.samples", std::to_string(n.samples)},
+          {"numerics.layout", n.layout},
+          {"numerics.interface", n.interface},
+          {"numerics.min_fraction", real(n.min_fraction)},
+          {"numerics.closure", n.closure},
+          {"numerics.relaxation_iterations", std::to_string(n.relaxation_iterations)},
+          {"numerics.void_density", real(n.void_density)},
+          {"numerics.solid_floor", real(n.solid_floor)},
+          {"time.cfl", real(s.time.cfl)},
+          {"time.growth", real(s.time.growth)},
+          {"time.dt_max", real(s.time.dt_max)}};
+}
 
 Scene read_scene(const Deck& deck) {
   const DeckNode root = deck.root();

@@ -132,4 +132,11 @@ struct Scene {
 // Reads and validates the whole deck; throws InputError naming file:line and key.
 Scene read_scene(const Deck& deck);
 
+// Every numerics.* value and the time.* values that shape the solution after the start (cfl,
+// growth, dt_max), as the run uses them: the deck's where it sets them, else this build's
+// defaults. Keyed as in the deck (numerics.viscosity.linear); reals in the fewest of 15 or 17
+// digits that read back exactly. A checkpoint records them, so a restart by a build with other
+// defaults is refused naming the key (deck_values alone hold only what the deck sets).
+std::map<std::string, std::string> resolved_numerics(const Scene& s);
+
 }  // namespace mp

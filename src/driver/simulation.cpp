@@ -724,6 +724,7 @@ std::string Simulation::checkpoint_meta() const {
                       {"real", real_name()},
                       {"scene", scene_.name},
                       {"deck", deck},
+                      {"resolved", resolved_numerics(scene_)},
                       {"time", t_},
                       {"cycle", cycle_},
                       {"dt_old", double(dt_old_)},
@@ -784,6 +785,19 @@ void Simulation::restart(const std::string& path) {
     }
     if (++ndiff <= 6) diff += "\n  " + line;
   };
+  // With the checkpoint's resolved numerics (defaults included; written since 2026-12-03) the
+  // numerics.* and time.cfl/growth/dt_max keys are compared as resolved: a key the deck leaves
+  // to the default still differs if the checkpoint's build had another default, and a key set
+  // to its default equals it left out. Older checkpoints: the deck's own keys only (logged).
+  const bool resolved = meta.contains("resolved") && meta["resolved"].is_object();
+  std::map<std::string, std::string> now, then;
+  if (resolved) {
+    now = resolved_numerics(scene_);
+    for (auto it = meta["resolved"].begin(); it != meta["resolved"].end(); ++it)
+      then[it.key()] = it.value().is_string() ? it.value().get<std::string>() : it.value().dump();
+    for (const auto& [k, v] : now) here.erase(k), there.erase(k);
+    for (const auto& [k, v] : then) here.erase(k), there.erase(k);
+  }
   for (const auto& [k, v] : there) {
     const auto it = here.find(k);
     if (it == here.end())
@@ -793,6 +807,16 @@ void Simulation::restart(const std::string& path) {
   }
   for (const auto& [k, v] : here)
     if (!there.count(k)) note(k, "not set", "'" + v + "'");
+  for (const auto& [k, v] : then) {
+    const auto h = now.find(k);
+    if (h == now.end())
+      note(k, "'" + v + "'", "unknown to this build");
+    else if (h->second != v)
+      note(k, "'" + v + "'",
+           "'" + h->second + "'" + (scene_.deck_values.count(k) ? "" : " (this build's default)"));
+  }
+  for (const auto& [k, v] : now)
+    if (!then.count(k)) note(k, "not recorded", "'" + v + "'");
   if (ndiff > 0)
     throw InputError("checkpoint " + path + " was written for another deck (" +
                      std::to_string(ndiff) + " difference" + (ndiff > 1 ? "s" : "") +
@@ -801,6 +825,10 @@ void Simulation::restart(const std::string& path) {
                      "--restart-allow):" +
                      diff);
   for (const std::string& c : restart_changes_) log_line("  restart changes " + c);
+  if (!resolved)
+    log_line("  restart: " + path +
+             " records only the deck's own keys (written before 2026-12-03): numerics the deck "
+             "leaves to their defaults take this build's defaults");
 
   // Fields: cell and node state straight into the hydro's arrays; per-material state through
   // the layout's own rebuild, then the cell averages as they were (a mixed cell's average is
