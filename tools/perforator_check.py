@@ -69,7 +69,13 @@ def main():
     ap.add_argument("--carrier-outer", type=float, default=1.9939)
     ap.add_argument("--casing-inner", type=float, default=6.2103)
     ap.add_argument("--casing-outer", type=float, default=6.9723)
+    ap.add_argument("--charges", choices=("both", "top", "bottom"), default="both",
+                    help="which charges to probe (a cut-down deck such as "
+                         "perf/studies/perforator_top_across_well.yaml holds one)")
     a = ap.parse_args()
+    global CHARGES
+    if a.charges != "both":
+        CHARGES = [c for c in CHARGES if c[0].startswith(a.charges)]
 
     runs = dumps.list_dumps(TOOL, a.run)
     wall = walls(a)
