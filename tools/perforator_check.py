@@ -7,7 +7,10 @@ and the casing wall and entered the rock, and the copper jet tip's position and 
 
 A wall counts as perforated at the first dump where a cell with copper fraction > 0.5 lies
 beyond the wall's outer surface along the charge axis (centre within --radius of the axis line,
-y = 0 the symmetry plane); beyond the casing's outer surface is the rock. The jet tip is the
+y = 0 the symmetry plane); beyond the casing's outer surface is the rock, where the casing also
+has to be pierced: less than half a cell of steel left ahead of the tip along its row (a casing
+pushed into the rock ahead of the copper, with steel still between them, is not; since
+2026-12-03, before which a bulge counted). The jet tip is the
 farthest such cell along the charge's direction; its speed is the tip's advance between dumps
 (dx/dt) and the copper-carrying cell's own axial velocity (the mean of its 8 node velocities).
 Writes PREFIX.json and PREFIX.md; prints the table.
@@ -39,9 +42,11 @@ def walls(a):
             -1.0: (a.carrier_x - a.carrier_outer, -a.casing_inner, -a.casing_outer)}
 
 
-def probe(d, copper, vx, z0, direction, radius):
+def probe(d, copper, vx, steel, z0, direction, radius):
     """The tip (farthest copper cell centre along `direction`) on the axis line y = 0, z = z0,
-    and that cell's axial velocity; None if no copper cell there."""
+    that cell's axial velocity, and the steel cap ahead of it: the sum of the steel fractions of
+    the contiguous cells beyond the tip along its row that hold steel (> 0.05), in cells; None if
+    no copper cell there."""
     y, z = d.centres(1), d.centres(2)
     near = (np.abs(z[:, None] - z0) ** 2 + y[None, :] ** 2) <= radius ** 2  # (nz, ny)
     if not near.any():
@@ -56,7 +61,12 @@ def probe(d, copper, vx, z0, direction, radius):
     n = int(np.argmax(s))
     k, j, i = ks[n], js[n], iis[n]
     u = vx[k:k + 2, j:j + 2, i:i + 2].mean()
-    return float(x[i]), float(direction * u)
+    step = 1 if direction > 0 else -1
+    cap, n = 0.0, i + step
+    while 0 <= n < len(x) and steel[k, j, n] > 0.05:
+        cap += float(steel[k, j, n])
+        n += step
+    return float(x[i]), float(direction * u), cap
 
 
 def main():
@@ -89,15 +99,22 @@ def main():
         radius = a.radius if a.radius is not None else zone
         copper = d.fraction("copper")
         vx = d.field("velocity_x")
+        steel = d.fraction("steel")
         for name, z0, direction, mouth in CHARGES:
-            tip = probe(d, copper, vx, z0, direction, radius)
+            tip = probe(d, copper, vx, steel, z0, direction, radius)
             row = {"time": t, "cycle": cycle, "tip_x": None, "tip_speed_cell": None,
-                   "beyond_mouth": None}
+                   "beyond_mouth": None, "steel_cap_cells": None}
             if tip:
-                row["tip_x"], row["tip_speed_cell"] = tip
+                row["tip_x"], row["tip_speed_cell"], row["steel_cap_cells"] = tip
                 row["beyond_mouth"] = direction * (tip[0] - mouth)
                 for key, x_wall in zip(("carrier", "casing_inner", "rock"), wall[direction]):
-                    if first_cross[name][key] is None and direction * (tip[0] - x_wall) > 0:
+                    beyond = direction * (tip[0] - x_wall) > 0
+                    # in the rock: beyond the casing's outer surface with less than half a
+                    # cell of steel ahead (a casing bulged into the rock ahead of the copper
+                    # is not pierced)
+                    if key == "rock":
+                        beyond = beyond and tip[2] < 0.5
+                    if first_cross[name][key] is None and beyond:
                         first_cross[name][key] = t
             rows[name].append(row)
     # tip speed from the advance between dumps (centred on the later dump)
@@ -116,7 +133,8 @@ def main():
         "zone_cm": zone,
         "probe_radius_cm": a.radius if a.radius is not None else zone,
         "criterion": "copper fraction > 0.5 in a cell centred within the probe radius of the "
-                     "charge axis (y = 0) beyond the wall's outer surface",
+                     "charge axis (y = 0) beyond the wall's outer surface; for the rock also "
+                     "less than half a cell of steel ahead of that cell along its row",
         "walls_x": {"+x": list(wall[+1.0]), "-x": list(wall[-1.0])},
         "last_time": runs[-1][0],
         "charges": {name: {"first_dump_beyond": first_cross[name], "history": rows[name]}
@@ -138,13 +156,13 @@ def main():
     lines += ["", "Times are the first dump showing it (the crossing happened since the dump "
               "before).", "",
               "| t (us) | charge | tip x (cm) | tip beyond mouth (cm) | tip speed dx/dt (cm/us) | "
-              "tip cell u (cm/us) |", "|---|---|---|---|---|---|"]
+              "tip cell u (cm/us) | steel ahead (cells) |", "|---|---|---|---|---|---|---|"]
     for n in range(len(runs)):
         for name, *_ in CHARGES:
             r = rows[name][n]
             lines.append(f"| {r['time']:g} | {name} | {fmt(r['tip_x'])} | "
                          f"{fmt(r['beyond_mouth'])} | {fmt(r['tip_speed_dxdt'])} | "
-                         f"{fmt(r['tip_speed_cell'])} |")
+                         f"{fmt(r['tip_speed_cell'])} | {fmt(r['steel_cap_cells'], '{:.2f}')} |")
     text = "\n".join(lines) + "\n"
     print(text)
     if a.output:
