@@ -172,7 +172,7 @@ void Burn::update(const Field3& rho, double dt) {
 
 void Burn::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
                  const Field3& rho, const Field3& pre, int order) {
-  hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, scratch_, order);
+  hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
 }
 
 std::vector<HaloField> Burn::halo_fields() const {

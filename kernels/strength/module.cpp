@@ -226,9 +226,13 @@ void Strength::corrector(const Field3& ub, const Field3& vb, const Field3& wb, c
 
 void Strength::remap(int q, const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
                      const Field3& rho, const Field3& pre, int order) {
+  // the values before the step go to the set's half-step deviator (free between the corrector
+  // and the next predictor, which writes it before anything reads it) and the scratch
   const StressSet& st = sets_[q];
   hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre,
-                        {st.s[0], st.s[1], st.s[2], st.s[3], st.s[4], st.s[5], st.eps_p}, scratch_,
+                        {st.s[0], st.s[1], st.s[2], st.s[3], st.s[4], st.s[5], st.eps_p},
+                        {st.s_half[0], st.s_half[1], st.s_half[2], st.s_half[3], st.s_half[4],
+                         st.s_half[5], scratch_},
                         order);
 }
 
@@ -586,6 +590,56 @@ struct PoolTargets {
   int n = 0;
 };
 
+// Set q's gathered components c = 0, 1, ... (stored component-major: c * n + q).
+struct SetOlds {
+  const Field3* old;
+  int q, n;
+  KOKKOS_INLINE_FUNCTION const Field3& operator[](int c) const { return old[c * n + q]; }
+};
+
+// The pooled sets' remap of one batch of NX components (Strength::remap_compact): the values
+// before the step (gathered, component-major), each set's carrier mass flux and density, and
+// where the new values go (the batch's pure-cell arrays and slot extras of the current pool).
+// (The gather fields number max(7, sets) + 1, at most kMaxMaterials + 1.)
+struct PoolRemap {
+  Field3 old[mat::kMaxMaterials + 1];
+  Field3 flux[mat::kMaxMaterials], rho[mat::kMaxMaterials];
+  Field3 pure[7];
+  Buffer slot[7];
+  int mid[mat::kMaxMaterials];
+};
+
+template <int NX>
+void remap_pool(const Mesh& mesh, const PoolRemap& t, const mat::CompactDev& dev, int n, Real ax,
+                Real ay, Real az, const Field3& pre, int order) {
+  Kokkos::parallel_for(
+      "strength::remap", mesh.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        const int id = dev.mat(i, j, k);
+        for (int q = 0; q < n; ++q) {
+          // where set q's material is now: its pure cell (-2), its slot, or absent (-1)
+          int at = -1;
+          if (id >= 0) {
+            if (id == t.mid[q]) at = -2;
+          } else {
+            const int f = dev.first(i, j, k), m = dev.nm(i, j, k);
+            for (int s = f; s < f + m; ++s)
+              if (dev.smat(s) == t.mid[q]) at = s;
+          }
+          if (at == -1) continue;
+          const SetOlds old{t.old, q, n};
+          Real out[NX];
+          hydro::per_mass_update<NX>(i, j, k, ax, ay, az, t.flux[q], t.flux[q], t.flux[q], t.rho[q],
+                                     pre, old, order, out);
+          for (int c = 0; c < NX; ++c) {
+            if (at == -2)
+              t.pure[c](i, j, k) = out[c];
+            else
+              t.slot[c](at) = out[c];
+          }
+        }
+      });
+}
+
 PoolTargets pool_targets(const mat::CompactDev& dev, const std::vector<Strength::Target>& targets,
                          const std::array<Field3, 7>& pure, const std::vector<StressSet>& sets) {
   if (targets.size() > 16) throw RunError("strength: more than 16 gather targets at once");
@@ -688,28 +742,46 @@ void Strength::remap_compact(const std::array<bool, 3>& axes, const std::vector<
                              const std::vector<Field3>& rho, const Field3& pre, int order) {
   // The sets' values before the update are gathered into the gather fields (the owned cells
   // and the two layers of ghosts the fluxes along the sweep read), as many components of every
-  // set at once as the fields hold (all 7 with one set, 3 with two); then each one's remap
-  // goes into the scratch and is scattered into the updated pool. A pure cell's arrays are
-  // shared by the sets, so every set's component is read before any is written. (Reading the
-  // pool inside the remap instead of gathering took 13 ms a cycle against 5 + 4 for the
-  // stripes of the layout study, a branch per read; one gather per component, 21 a cycle
-  // against 3 now, took 4 ms.)
+  // set at once as the fields hold (all 7 with one set, 4 with two); then one launch remaps
+  // them all and writes each new value into the updated pool (the cells that hold the set's
+  // material), with each face's donor and Courant number found once per set for all its
+  // components. A pure cell's arrays are shared by the sets, so every set's component is read
+  // (gathered) before any is written. (Reading the pool inside the remap instead of gathering
+  // took 13 ms a cycle against 5 + 4 for the stripes of the layout study, a branch per read.
+  // A remap launch and a scatter launch per component and set, 14 + 14 a sweep with two sets,
+  // took 2.7 times as long on the zone-0.05 perforator: docs/perforator.md, "Cycle cost".)
   std::vector<Field3> g(cell_half_.begin(), cell_half_.end());
   g.insert(g.end(), gather_.begin(), gather_.end());
+  g.push_back(scratch_);
   const int n = sets();
   const int batch = std::max(1, std::min(7, int(g.size()) / n));
   const Where w = axes[0] ? Where::SweepX : axes[1] ? Where::SweepY : Where::SweepZ;
+  const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
   for (int x0 = 0; x0 < 7; x0 += batch) {
-    const int x1 = std::min(7, x0 + batch);
+    const int x1 = std::min(7, x0 + batch), nx = x1 - x0;
     std::vector<Target> before;
     for (int x = x0; x < x1; ++x)
       for (int q = 0; q < n; ++q) before.push_back({q, x, g[std::size_t((x - x0) * n + q)]});
     gather(mm_->previous(), before, w);
-    for (const Target& t : before) {
-      hydro::remap_per_mass_from(mesh_, axes, {flux[t.q], flux[t.q], flux[t.q]}, rho[t.q], pre,
-                                 t.field, scratch_, order);
-      scatter({{t.q, t.x, scratch_}}, Where::Owned);
+    const mat::CompactDev dev = mm_->compact();
+    PoolRemap t;
+    for (int q = 0; q < n; ++q) {
+      t.flux[q] = flux[std::size_t(q)];
+      t.rho[q] = rho[std::size_t(q)];
+      t.mid[q] = sets_[std::size_t(q)].material;
     }
+    if (before.size() > std::size(t.old))
+      throw RunError("strength: more gather fields than a remap takes");
+    for (const Target& b : before) t.old[(b.x - x0) * n + b.q] = b.field;
+    for (int x = x0; x < x1; ++x) {
+      t.pure[x - x0] = pure_[std::size_t(x)];
+      t.slot[x - x0] = dev.sx[x];
+    }
+    using Launch = void (*)(const Mesh&, const PoolRemap&, const mat::CompactDev&, int, Real, Real,
+                            Real, const Field3&, int);
+    static constexpr Launch launch[7] = {remap_pool<1>, remap_pool<2>, remap_pool<3>, remap_pool<4>,
+                                         remap_pool<5>, remap_pool<6>, remap_pool<7>};
+    launch[nx - 1](mesh_, t, dev, n, ax, ay, az, pre, order);
   }
 }
 
