@@ -426,6 +426,29 @@ void MaterialState::carrier_density(unsigned mask, const Field3& out) const {
       });
 }
 
+void MaterialState::carrier_densities(const unsigned* mask, const Field3* out, int n) const {
+  constexpr int kMax = kMaxMaterials + 1;
+  if (n < 1 || n > kMax) throw RunError("carrier_densities: 1 to kMaxMaterials + 1 carriers");
+  if (n == 1) return carrier_density(mask[0], out[0]);
+  struct Carriers {
+    unsigned mask[kMax];
+    Field3 out[kMax];
+  } c;
+  for (int q = 0; q < n; ++q) c.mask[q] = mask[q], c.out[q] = out[q];
+  for_cells(
+      "matter::carrier_density", {0, 0, 0}, {ex_, ey_, ez_},
+      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+        for (int q = 0; q < n; ++q) {
+          Real r = 0;
+          for (int s = 0; s < cell.count(); ++s) {
+            const MatRef m = cell.get(s);
+            if (m.alpha > 0 && (c.mask[q] >> m.m) & 1u) r += m.alpha * *m.rho;
+          }
+          c.out[q](i, j, k) = r;
+        }
+      });
+}
+
 Field3 MaterialState::fraction(int m) const {
   Field3 f(Kokkos::view_alloc(Kokkos::WithoutInitializing, "fraction"), ex_, ey_, ez_);
   if (kind_ == LayoutKind::Dense) {

@@ -244,6 +244,9 @@ class MaterialState {
   // sum alpha_m rho_m over the materials m whose bit is set in `mask`, on every cell (ghosts
   // included): the density of a module's carrier materials (kernels/hydro/hydro.hpp).
   void carrier_density(unsigned mask, const Field3& out) const;
+  // The same for n carriers at once (n <= kMaxMaterials + 1), one pass over the cells: out[c]
+  // gets mask[c]'s density, bit for bit what carrier_density gives.
+  void carrier_densities(const unsigned* mask, const Field3* out, int n) const;
   // Gives every slot of the compact pool `total` more values (kMaxExtras at most) for a module
   // that stores per-material quantities only where the material is (the strength module's
   // stress sets, issue #12); a rebuild copies the first `carried` of them for the cells it
