@@ -414,22 +414,12 @@ std::vector<double> MaterialState::material_masses() const {
 }
 
 void MaterialState::carrier_density(unsigned mask, const Field3& out) const {
-  for_cells(
-      "matter::carrier_density", {0, 0, 0}, {ex_, ey_, ez_},
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        Real r = 0;
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (m.alpha > 0 && (mask >> m.m) & 1u) r += m.alpha * *m.rho;
-        }
-        out(i, j, k) = r;
-      });
+  carrier_densities(&mask, &out, 1);
 }
 
 void MaterialState::carrier_densities(const unsigned* mask, const Field3* out, int n) const {
   constexpr int kMax = kMaxMaterials + 1;
   if (n < 1 || n > kMax) throw RunError("carrier_densities: 1 to kMaxMaterials + 1 carriers");
-  if (n == 1) return carrier_density(mask[0], out[0]);
   struct Carriers {
     unsigned mask[kMax];
     Field3 out[kMax];
