@@ -19,6 +19,7 @@
 // runs in material-id order in both layouts, and absent materials (dense) add exact zeros, so
 // both layouts produce the same bits.
 #pragma once
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -563,14 +564,32 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   // Slots before each cell (low 32 bits) and mixed rows before it (high bits), in one scan.
   const long ncell = long(ex_) * ey_ * ez_;
   long long total = 0;
+  // The cells in linear order (i * ey + j) * ez + k. Where the cell arrays are LayoutRight
+  // (every host backend) that is their memory order, and the scan reads and writes them by
+  // that offset: recovering (i, j, k) from it took three integer divisions per cell and pass,
+  // most of the scan's time (it calls the body twice per cell).
+  constexpr bool linear = std::is_same<IntField3::array_layout, Kokkos::LayoutRight>::value;
+  if (linear && (long(nw.nm.span()) != ncell || long(nw.first.span()) != ncell ||
+                 long(nw.mat.span()) != ncell))
+    throw std::logic_error("MaterialState: cell arrays are not contiguous");
   Kokkos::parallel_scan(
       name + "::scan", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
       KOKKOS_LAMBDA(long lin, long long& acc, bool final) {
-        const int k = int(lin % ez), j = int((lin / ez) % ey), i = int(lin / (long(ez) * ey));
-        const int n = nw.nm(i, j, k);
+        int *pn, *pf, *pm;
+        if constexpr (linear) {
+          pn = nw.nm.data() + lin;
+          pf = nw.first.data() + lin;
+          pm = nw.mat.data() + lin;
+        } else {
+          const int k = int(lin % ez), j = int((lin / ez) % ey), i = int(lin / (long(ez) * ey));
+          pn = &nw.nm(i, j, k);
+          pf = &nw.first(i, j, k);
+          pm = &nw.mat(i, j, k);
+        }
+        const int n = *pn;
         if (final) {
-          nw.first(i, j, k) = int(acc & 0xffffffffLL);
-          if (n >= 0) nw.mat(i, j, k) = n > 1 ? -int(acc >> 32) - 1 : 0;
+          *pf = int(acc & 0xffffffffLL);
+          if (n >= 0) *pm = n > 1 ? -int(acc >> 32) - 1 : 0;
         }
         if (n > 1) acc += (1LL << 32) + n;
       },
