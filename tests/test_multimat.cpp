@@ -858,9 +858,38 @@ TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
   // to 800 (ratios 0.55, 0.53), more slowly from 200 to 400 (0.87, 0.72). The bound 0.75
   // (order 0.42) says they fall; it is not met from 200 to 400 for the density, which is why
   // this runs 400 and 800. The density error at 800 cells, 16 %, is still above issue #16's
-  // 10 % (met at 1600: 7.4 %).
+  // 10 % (met at 1600 cells: 7.4 % then, 7.9 % with the shares by mass; the next test).
   EXPECT_LT(rf, 0.75 * rc);
   EXPECT_LT(iff, 0.75 * ic);
+}
+
+// Issue #16's products-into-air criterion, the expanded products' density within 10 % of the
+// exact star density, with the default numerics (KE fix on, its shares by mass): not met at 400
+// or 800 cells (above), so it is asserted where the converging error gets there, 1600 cells,
+// and the error must keep falling from 800 to 1600 at the 400 -> 800 order's pace (bound 0.75,
+// as above). Measured 2026-12-03 (double, 1 thread): density -17.3 % at 800 and -7.9 % at 1600
+// cells (ratio 0.46, order 1.1), interface +0.138 and +0.067 cm (0.49), star p -0.5 %, u +0.1 %
+// at 1600, 1,860 cycles (docs/numerics.md, "Products into air").
+TEST(MultiMaterial, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
+  const ProductsAir& f = products_air(true, 800);
+  const ProductsAir& ff = products_air(true, 1600);
+  const auto rel = [](double a, double b) { return std::abs(a / b - 1); };
+  const double rf = rel(f.rho_products, f.rho_star), rff = rel(ff.rho_products, ff.rho_star);
+  const double iff = std::abs(f.interface - f.contact), ifff = std::abs(ff.interface - ff.contact);
+  std::printf(
+      "products-air, 800 -> 1600 cells: |rho/rho* - 1| %.1f %% -> %.1f %% (ratio %.2f), "
+      "interface offset %.3f -> %.3f cm (ratio %.2f)\n",
+      100 * rf, 100 * rff, rff / rf, iff, ifff, ifff / iff);
+  EXPECT_LT(rff, 0.10);
+  EXPECT_LT(rff, 0.75 * rf);
+  EXPECT_LT(ifff, 0.75 * iff);
+  // the star state stays within the 800-cell bounds of the test above
+  EXPECT_LT(rel(ff.p_air, ff.p_star), 0.025);
+  EXPECT_LT(rel(ff.u_mean, ff.u_star), 0.02);
+  EXPECT_TRUE(ff.finite);
+  EXPECT_GT(ff.rho_min, 0);
+  EXPECT_GT(ff.e_min, 0);
+  EXPECT_GT(ff.p_min, 0);
 }
 
 // A regression pin of a known defect, not a verification (issue #16 open; docs/numerics.md,
