@@ -96,14 +96,16 @@ KOKKOS_INLINE_FUNCTION int read_donor(const mat::CompactDev& d, const Field3& rh
 // The cell update of one remap sweep as a content source for MaterialState::assign: owned
 // cells gain the fluxes through their two faces along d; other cells keep their content (the
 // halo exchange that follows replaces the ghosts).
-template <class Dev>
+// (The sweep's axis D is a template parameter: the face offsets are then constants.)
+template <class Dev, int D>
 struct RemapSource {
   // content(i, j, k) reads cell (i, j, k) and the fluxes through its faces only
   static constexpr bool own_cell_only = true;
   static constexpr bool in_place = true;  // (so a cell may be written where it is)
+  static constexpr int d = D;
   Dev dev;
   Field3 rho, e, pre, post, vf, mf, ef;
-  int d, nmat;
+  int nmat;
   int lo[3], hi[3];
   Real min_fraction;
 
@@ -228,11 +230,13 @@ struct RemapSource {
 // uses the single-material van Leer face values (second order inside a material); a mixed
 // donor splits the volume flux by PLIC onion skin and carries the donor's material density
 // and energy (first order at interfaces).
-template <class Dev>
+// (The sweep's axis D is a template parameter, as RemapSource's.)
+template <class Dev, int D>
 struct FaceFluxes {
+  static constexpr int d = D;
   Dev dev;
   Field3 rho, e, pre, vf, mf, ef;
-  int d, nmat, order, iface;
+  int nmat, order, iface;
   Real dx, dy, dz;
   // module carriers (hydro.hpp): the summed mass flux of the materials of each mask
   int nc;
@@ -531,6 +535,28 @@ void Hydro::mm_corrector(Real vol) {
       });
 }
 
+namespace {
+
+template <class Dev, int D>
+void launch_face_fluxes(const Policy3& faces, FaceFluxes<Dev, D> ff) {
+  Kokkos::parallel_for("remap::material_flux", faces, ff);
+}
+
+// The fields of sweep d that a FaceFluxes or a RemapSource reads (s: the hydro state).
+template <class T, class Dev, class State>
+void set_sweep_fields(T& t, const Dev& dev, const State& s, int d, int nmat) {
+  t.dev = dev;
+  t.rho = s.rho;
+  t.e = s.e;
+  t.pre = s.pre_vol;
+  t.vf = s.vol_flux[d];
+  t.mf = s.mass_flux[d];
+  t.ef = s.energy_flux[d];
+  t.nmat = nmat;
+}
+
+}  // namespace
+
 template <class Dev>
 void Hydro::mm_face_fluxes(const Dev& dev, int d) {
   const Geometry g = mesh_.geometry();
@@ -544,49 +570,54 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
   }
   lo[d] = fr[0];
   hi[d] = fr[1];
-  FaceFluxes<Dev> ff{dev,
-                     s_.rho,
-                     s_.e,
-                     s_.pre_vol,
-                     s_.vol_flux[d],
-                     s_.mass_flux[d],
-                     s_.energy_flux[d],
-                     d,
-                     mats_.n,
-                     opt_.order,
-                     opt_.interface,
-                     g.dx[0],
-                     g.dx[1],
-                     g.dx[2],
-                     ncarrier_,
-                     {},
-                     {}};
-  for (int c = 0; c < ncarrier_; ++c) {
-    ff.cmask[c] = carrier_mask_[c];
-    ff.cflux[c] = carrier_flux_[c];
+  const Policy3 faces({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
+  auto fill = [&](auto& ff) {
+    set_sweep_fields(ff, dev, s_, d, mats_.n);
+    ff.order = opt_.order;
+    ff.iface = opt_.interface;
+    ff.dx = g.dx[0];
+    ff.dy = g.dx[1];
+    ff.dz = g.dx[2];
+    ff.nc = ncarrier_;
+    for (int c = 0; c < ncarrier_; ++c) {
+      ff.cmask[c] = carrier_mask_[c];
+      ff.cflux[c] = carrier_flux_[c];
+    }
+  };
+  if (d == 0) {
+    FaceFluxes<Dev, 0> ff{};
+    fill(ff);
+    launch_face_fluxes(faces, ff);
+  } else if (d == 1) {
+    FaceFluxes<Dev, 1> ff{};
+    fill(ff);
+    launch_face_fluxes(faces, ff);
+  } else {
+    FaceFluxes<Dev, 2> ff{};
+    fill(ff);
+    launch_face_fluxes(faces, ff);
   }
-  Kokkos::parallel_for("remap::material_flux",
-                       Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}), ff);
 }
 
 template <class Dev>
 void Hydro::mm_cell_update(const Dev& dev, int d) {
   const int ng = Mesh::ng;
-  RemapSource<Dev> src{
-      dev,
-      s_.rho,
-      s_.e,
-      s_.pre_vol,
-      s_.post_vol,
-      s_.vol_flux[d],
-      s_.mass_flux[d],
-      s_.energy_flux[d],
-      d,
-      mats_.n,
-      {ng, ng, ng},
-      {ng + mesh_.owned_cells(0), ng + mesh_.owned_cells(1), ng + mesh_.owned_cells(2)},
-      opt_.min_fraction};
-  mm_->assign("remap::material_update", src);
+  auto update = [&](auto src) {
+    set_sweep_fields(src, dev, s_, d, mats_.n);
+    src.post = s_.post_vol;
+    for (int a = 0; a < 3; ++a) {
+      src.lo[a] = ng;
+      src.hi[a] = ng + mesh_.owned_cells(a);
+    }
+    src.min_fraction = opt_.min_fraction;
+    mm_->assign("remap::material_update", src);
+  };
+  if (d == 0)
+    update(RemapSource<Dev, 0>{});
+  else if (d == 1)
+    update(RemapSource<Dev, 1>{});
+  else
+    update(RemapSource<Dev, 2>{});
 }
 
 void Hydro::mm_remap_faces(int d) {
