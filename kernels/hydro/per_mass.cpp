@@ -11,18 +11,34 @@ struct Fields {
   KOKKOS_INLINE_FUNCTION const Field3& operator[](int g) const { return f[g]; }
 };
 
-template <int N>
-void remap_n(const Mesh& mesh, const std::array<bool, 3>& axes,
-             const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
-             const Fields& phi, const Fields& old, int order) {
+template <int N, int Axis>
+void remap_axis(const Mesh& mesh, const std::array<bool, 3>& axes,
+                const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
+                const Fields& phi, const Fields& old, int order) {
   const Real ax = axes[0] ? 1 : 0, ay = axes[1] ? 1 : 0, az = axes[2] ? 1 : 0;
   const Field3 mfx = mass_flux[0], mfy = mass_flux[1], mfz = mass_flux[2];
   Kokkos::parallel_for(
       "remap::per_mass", mesh.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
         Real out[N];
-        per_mass_update<N>(i, j, k, ax, ay, az, mfx, mfy, mfz, rho, pre, old, order, out);
+        per_mass_update<N, Axis>(i, j, k, ax, ay, az, mfx, mfy, mfz, rho, pre, old, order, out);
         for (int g = 0; g < N; ++g) phi.f[g](i, j, k) = out[g];
       });
+}
+
+// A split sweep's axis at compile time (per_mass_update), else the axes at run time.
+template <int N>
+void remap_n(const Mesh& mesh, const std::array<bool, 3>& axes,
+             const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
+             const Fields& phi, const Fields& old, int order) {
+  const int n = int(axes[0]) + int(axes[1]) + int(axes[2]);
+  if (n == 1 && axes[0])
+    remap_axis<N, 0>(mesh, axes, mass_flux, rho, pre, phi, old, order);
+  else if (n == 1 && axes[1])
+    remap_axis<N, 1>(mesh, axes, mass_flux, rho, pre, phi, old, order);
+  else if (n == 1)
+    remap_axis<N, 2>(mesh, axes, mass_flux, rho, pre, phi, old, order);
+  else
+    remap_axis<N, -1>(mesh, axes, mass_flux, rho, pre, phi, old, order);
 }
 
 }  // namespace

@@ -53,8 +53,10 @@ KOKKOS_INLINE_FUNCTION Real per_mass_flux(const PerMassFace& f, const Field3& ol
 // to the axes whose ax, ay, az are positive (mfx, mfy, mfz their mass fluxes): the same sums, in
 // the same order, as the hydro's cell update. A cell its carrier left holds 0 (multi-material
 // carriers; hydro.hpp). (N is a template parameter so that the sums stay in registers: with a
-// run-time count the burn fraction's single field took twice as long.)
-template <int N, class Olds>
+// run-time count the burn fraction's single field took twice as long.) A split sweep may name
+// its axis at compile time (Axis 0, 1 or 2; ax, ay, az then unread): the index steps along it
+// are constants, as in the hydro's sweep kernels (remap.cpp), with the same sums.
+template <int N, int Axis = -1, class Olds>
 KOKKOS_INLINE_FUNCTION void per_mass_update(int i, int j, int k, Real ax, Real ay, Real az,
                                             const Field3& mfx, const Field3& mfy, const Field3& mfz,
                                             const Field3& rho, const Field3& pre, const Olds& old,
@@ -64,7 +66,7 @@ KOKKOS_INLINE_FUNCTION void per_mass_update(int i, int j, int k, Real ax, Real a
   Real dq[N];
   for (int g = 0; g < N; ++g) dq[g] = 0;
   for (int d = 0; d < 3; ++d) {
-    if (!((d == 0 ? ax : d == 1 ? ay : az) > 0)) continue;
+    if (Axis >= 0 ? d != Axis : !((d == 0 ? ax : d == 1 ? ay : az) > 0)) continue;
     const int sx = d == 0, sy = d == 1, sz = d == 2;
     const Field3& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
     const PerMassFace lo = per_mass_face(mf, rho, pre, i, j, k, d);

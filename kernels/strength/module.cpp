@@ -609,7 +609,9 @@ struct PoolRemap {
   int mid[mat::kMaxMaterials];
 };
 
-template <int NX>
+// (Axis: the split sweep's axis at compile time, per_mass_update; pooled sets are remapped in
+// split sweeps only.)
+template <int NX, int Axis>
 void remap_pool(const Mesh& mesh, const PoolRemap& t, const mat::CompactDev& dev, int n, Real ax,
                 Real ay, Real az, const Field3& pre, int order) {
   Kokkos::parallel_for(
@@ -628,8 +630,8 @@ void remap_pool(const Mesh& mesh, const PoolRemap& t, const mat::CompactDev& dev
           if (at == -1) continue;
           const SetOlds old{t.old, q, n};
           Real out[NX];
-          hydro::per_mass_update<NX>(i, j, k, ax, ay, az, t.flux[q], t.flux[q], t.flux[q], t.rho[q],
-                                     pre, old, order, out);
+          hydro::per_mass_update<NX, Axis>(i, j, k, ax, ay, az, t.flux[q], t.flux[q], t.flux[q],
+                                           t.rho[q], pre, old, order, out);
           for (int c = 0; c < NX; ++c) {
             if (at == -2)
               t.pure[c](i, j, k) = out[c];
@@ -779,9 +781,14 @@ void Strength::remap_compact(const std::array<bool, 3>& axes, const std::vector<
     }
     using Launch = void (*)(const Mesh&, const PoolRemap&, const mat::CompactDev&, int, Real, Real,
                             Real, const Field3&, int);
-    static constexpr Launch launch[7] = {remap_pool<1>, remap_pool<2>, remap_pool<3>, remap_pool<4>,
-                                         remap_pool<5>, remap_pool<6>, remap_pool<7>};
-    launch[nx - 1](mesh_, t, dev, n, ax, ay, az, pre, order);
+    static constexpr Launch launch[3][7] = {
+        {remap_pool<1, 0>, remap_pool<2, 0>, remap_pool<3, 0>, remap_pool<4, 0>, remap_pool<5, 0>,
+         remap_pool<6, 0>, remap_pool<7, 0>},
+        {remap_pool<1, 1>, remap_pool<2, 1>, remap_pool<3, 1>, remap_pool<4, 1>, remap_pool<5, 1>,
+         remap_pool<6, 1>, remap_pool<7, 1>},
+        {remap_pool<1, 2>, remap_pool<2, 2>, remap_pool<3, 2>, remap_pool<4, 2>, remap_pool<5, 2>,
+         remap_pool<6, 2>, remap_pool<7, 2>}};
+    launch[axes[0] ? 0 : axes[1] ? 1 : 2][nx - 1](mesh_, t, dev, n, ax, ay, az, pre, order);
   }
 }
 
