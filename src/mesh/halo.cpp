@@ -70,17 +70,22 @@ struct AxisPlan {
   int n0 = 0, n1 = 0;     // slab extents along the first two axes (buffer indexing)
 
   // Field q at (i, j, k) as the sequential order (walls zeroed first) would read it.
+  // (D >= 0: the kernel's axis at compile time, equal to d)
+  template <int D = -1>
   KOKKOS_INLINE_FUNCTION Real read(int q, int i, int j, int k) const {
-    const int x = d == 0 ? i : d == 1 ? j : k;
+    const int a = D >= 0 ? D : d;
+    const int x = a == 0 ? i : a == 1 ? j : k;
     if (sign[q] < 0)
       for (int s = 0; s < 2; ++s)
         if (zero_wall[s] && x == wall[s]) return Real(0);
     return f[q](i, j, k);
   }
+  template <int D = -1>
   KOKKOS_INLINE_FUNCTION int at(int i, int j, int k, int x0) const {
     // position in a side's slab, the slab's first index along d being x0
+    const int a = D >= 0 ? D : d;
     int idx[3] = {i - lo[0], j - lo[1], k - lo[2]};
-    idx[d] = (d == 0 ? i : d == 1 ? j : k) - x0;
+    idx[a] = (a == 0 ? i : a == 1 ? j : k) - x0;
     return idx[0] + n0 * (idx[1] + n1 * idx[2]);
   }
 };
@@ -128,21 +133,33 @@ Policy3 layer_policy(const Mesh& mesh, const HaloField& f0, int d, int layers) {
 }
 
 // Packs both sides' send slabs of every field in one launch (sides with a neighbour only).
-void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
-          const Buffer& b1, int first_field) {
+template <int D>
+void pack_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+               const Buffer& b1, int first_field) {
   const int ng = Mesh::ng;
   Kokkos::parallel_for(
-      "halo::pack", layer_policy(mesh, f0, p.d, 2 * ng), KOKKOS_LAMBDA(int i, int j, int k) {
+      "halo::pack", layer_policy(mesh, f0, D, 2 * ng), KOKKOS_LAMBDA(int i, int j, int k) {
         int idx[3] = {i, j, k};
-        const int t = idx[p.d];
+        const int t = idx[D];
         const int s = t < ng ? 0 : 1;
         if (p.kind[s] != AxisPlan::Neighbour) return;
-        idx[p.d] = p.send[s] + t - s * ng;
-        const int at = p.at(idx[0], idx[1], idx[2], p.send[s]);
+        idx[D] = p.send[s] + t - s * ng;
+        const int at = p.template at<D>(idx[0], idx[1], idx[2], p.send[s]);
         const Buffer& b = s == 0 ? b0 : b1;
         for (int q = 0; q < p.n; ++q)
-          b((first_field + q) * p.per_field + at) = p.read(q, idx[0], idx[1], idx[2]);
+          b((first_field + q) * p.per_field + at) = p.template read<D>(q, idx[0], idx[1], idx[2]);
       });
+}
+
+// Packs both sides' send slabs (the axis at compile time: constant index steps).
+void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+          const Buffer& b1, int first_field) {
+  if (p.d == 0)
+    pack_axis<0>(mesh, f0, p, b0, b1, first_field);
+  else if (p.d == 1)
+    pack_axis<1>(mesh, f0, p, b0, b1, first_field);
+  else
+    pack_axis<2>(mesh, f0, p, b0, b1, first_field);
 }
 
 // Fills every ghost layer of both sides of axis d of every field in one launch: unpacks what a
@@ -153,38 +170,39 @@ void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer
 // Outflow: zero gradient, every ghost layer copies the boundary cell or node.
 // Nothing a thread writes is read by another: the mirror reads owned layers along d (never a
 // ghost), and reads a zeroed wall node as the zero it becomes.
-void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
-          const Buffer& b1, int first_field) {
+template <int D>
+void fill_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+               const Buffer& b1, int first_field) {
   const int ng = Mesh::ng;
   const bool walls = p.zero_wall[0] || p.zero_wall[1];
   Kokkos::parallel_for(
-      "halo::fill", layer_policy(mesh, f0, p.d, 2 * ng + (walls ? 2 : 0)),
+      "halo::fill", layer_policy(mesh, f0, D, 2 * ng + (walls ? 2 : 0)),
       KOKKOS_LAMBDA(int i, int j, int k) {
         int idx[3] = {i, j, k};
-        const int t = idx[p.d];
+        const int t = idx[D];
         if (t >= 2 * ng) {  // a wall node
           const int s = t - 2 * ng;
           if (!p.zero_wall[s]) return;
-          idx[p.d] = p.wall[s];
+          idx[D] = p.wall[s];
           for (int q = 0; q < p.n; ++q)
             if (p.sign[q] < 0) p.f[q](idx[0], idx[1], idx[2]) = 0;
           return;
         }
         const int s = t < ng ? 0 : 1;
         const int x = p.ghost[s] + t - s * ng;
-        idx[p.d] = x;
+        idx[D] = x;
         if (p.kind[s] == AxisPlan::Neighbour) {
           const Buffer& b = s == 0 ? b0 : b1;
-          const int at = p.at(idx[0], idx[1], idx[2], p.ghost[s]);
+          const int at = p.template at<D>(idx[0], idx[1], idx[2], p.ghost[s]);
           for (int q = 0; q < p.n; ++q)
             p.f[q](idx[0], idx[1], idx[2]) = b((first_field + q) * p.per_field + at);
           return;
         }
         if (p.kind[s] == AxisPlan::Self) {  // what this block would have sent itself
           int src[3] = {idx[0], idx[1], idx[2]};
-          src[p.d] = p.send[1 - s] + t - s * ng;
+          src[D] = p.send[1 - s] + t - s * ng;
           for (int q = 0; q < p.n; ++q)
-            p.f[q](idx[0], idx[1], idx[2]) = p.read(q, src[0], src[1], src[2]);
+            p.f[q](idx[0], idx[1], idx[2]) = p.template read<D>(q, src[0], src[1], src[2]);
           return;
         }
         const int dir = s == 0 ? -1 : 1;  // from the wall outwards
@@ -194,13 +212,24 @@ void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer
         // cells: mirror across the face; nodes: mirror across the wall node; outflow: the
         // wall value
         const bool reflective = p.kind[s] == AxisPlan::Reflective;
-        src[p.d] = reflective ? (p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer)
-                              : p.wall[s];
+        src[D] = reflective ? (p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer)
+                            : p.wall[s];
         for (int q = 0; q < p.n; ++q) {
-          const Real v = p.read(q, src[0], src[1], src[2]);
+          const Real v = p.template read<D>(q, src[0], src[1], src[2]);
           p.f[q](idx[0], idx[1], idx[2]) = reflective ? p.sign[q] * v : v;
         }
       });
+}
+
+// Fills every ghost layer of both sides of axis p.d (at compile time, as pack).
+void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
+          const Buffer& b1, int first_field) {
+  if (p.d == 0)
+    fill_axis<0>(mesh, f0, p, b0, b1, first_field);
+  else if (p.d == 1)
+    fill_axis<1>(mesh, f0, p, b0, b1, first_field);
+  else
+    fill_axis<2>(mesh, f0, p, b0, b1, first_field);
 }
 
 // The whole exchange in one launch, for a block with no neighbour rank on any side (every side
