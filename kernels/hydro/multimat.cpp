@@ -9,6 +9,7 @@
 //  - cell pressure p = sum alpha_m p_m (volume-fraction weighted, as in PAGOSA);
 //  - cell sound speed from rho c^2 = sum alpha_m rho_m c_m^2, the stiffness of the equal-strain
 //    mixture (dp/d(ln rho) at fixed strain sharing); a pure cell keeps its material's c.
+#include "core/axis.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
@@ -537,11 +538,6 @@ void Hydro::mm_corrector(Real vol) {
 
 namespace {
 
-template <class Dev, int D>
-void launch_face_fluxes(const Policy3& faces, FaceFluxes<Dev, D> ff) {
-  Kokkos::parallel_for("remap::material_flux", faces, ff);
-}
-
 // The fields of sweep d that a FaceFluxes or a RemapSource reads (s: the hydro state).
 template <class T, class Dev, class State>
 void set_sweep_fields(T& t, const Dev& dev, const State& s, int d, int nmat) {
@@ -584,19 +580,11 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
       ff.cflux[c] = carrier_flux_[c];
     }
   };
-  if (d == 0) {
-    FaceFluxes<Dev, 0> ff{};
+  with_axis(d, [&](auto a) {
+    FaceFluxes<Dev, decltype(a)::value> ff{};
     fill(ff);
-    launch_face_fluxes(faces, ff);
-  } else if (d == 1) {
-    FaceFluxes<Dev, 1> ff{};
-    fill(ff);
-    launch_face_fluxes(faces, ff);
-  } else {
-    FaceFluxes<Dev, 2> ff{};
-    fill(ff);
-    launch_face_fluxes(faces, ff);
-  }
+    Kokkos::parallel_for("remap::material_flux", faces, ff);
+  });
 }
 
 template <class Dev>
@@ -612,12 +600,7 @@ void Hydro::mm_cell_update(const Dev& dev, int d) {
     src.min_fraction = opt_.min_fraction;
     mm_->assign("remap::material_update", src);
   };
-  if (d == 0)
-    update(RemapSource<Dev, 0>{});
-  else if (d == 1)
-    update(RemapSource<Dev, 1>{});
-  else
-    update(RemapSource<Dev, 2>{});
+  with_axis(d, [&](auto a) { update(RemapSource<Dev, decltype(a)::value>{}); });
 }
 
 void Hydro::mm_remap_faces(int d) {

@@ -1,6 +1,7 @@
 // Remap of per-mass cell quantities (per_mass.hpp).
 #include "hydro/per_mass.hpp"
 
+#include "core/axis.hpp"
 #include "core/error.hpp"
 
 namespace mp::hydro {
@@ -30,15 +31,16 @@ template <int N>
 void remap_n(const Mesh& mesh, const std::array<bool, 3>& axes,
              const std::array<Field3, 3>& mass_flux, const Field3& rho, const Field3& pre,
              const Fields& phi, const Fields& old, int order) {
-  const int n = int(axes[0]) + int(axes[1]) + int(axes[2]);
-  if (n == 1 && axes[0])
-    remap_axis<N, 0>(mesh, axes, mass_flux, rho, pre, phi, old, order);
-  else if (n == 1 && axes[1])
-    remap_axis<N, 1>(mesh, axes, mass_flux, rho, pre, phi, old, order);
-  else if (n == 1)
-    remap_axis<N, 2>(mesh, axes, mass_flux, rho, pre, phi, old, order);
-  else
+  if (int(axes[0]) + int(axes[1]) + int(axes[2]) != 1) {
     remap_axis<N, -1>(mesh, axes, mass_flux, rho, pre, phi, old, order);
+    return;
+  }
+  with_axis(axes[0]   ? 0
+            : axes[1] ? 1
+                      : 2,
+            [&](auto a) {
+              remap_axis<N, decltype(a)::value>(mesh, axes, mass_flux, rho, pre, phi, old, order);
+            });
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 //   split (default): three steps of one axis each, order x,y,z / z,y,x alternating by cycle;
 //   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
 //            permutations of the axes; stable for a Courant-number sum below one).
+#include "core/axis.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/profiling.hpp"
@@ -262,12 +263,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
     hi[d] = fr[1];
     if (mm_)
       mm_remap_faces(d);
-    else if (d == 0)
-      cell_flux_sweep<0>(lo, hi, vf, pre, rho, e, mf, ef, ord);
-    else if (d == 1)
-      cell_flux_sweep<1>(lo, hi, vf, pre, rho, e, mf, ef, ord);
     else
-      cell_flux_sweep<2>(lo, hi, vf, pre, rho, e, mf, ef, ord);
+      with_axis(d, [&](auto a) {
+        cell_flux_sweep<decltype(a)::value>(lo, hi, vf, pre, rho, e, mf, ef, ord);
+      });
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
     HaloField efh{ef, Centering::Cell, {1, 1, 1}};
     mfh.face_axis = efh.face_axis = d;
@@ -388,12 +387,10 @@ void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3
       hi[a] = r[1];
     }
     const Policy3 nodes = mesh_.nodes(Region::Owned);
-    if (d == 0)
-      momentum_sweep<0>(lo, hi, nodes, mf, nm, u, v, w, F, U, V, W, K, ord, weigh, finish);
-    else if (d == 1)
-      momentum_sweep<1>(lo, hi, nodes, mf, nm, u, v, w, F, U, V, W, K, ord, weigh, finish);
-    else
-      momentum_sweep<2>(lo, hi, nodes, mf, nm, u, v, w, F, U, V, W, K, ord, weigh, finish);
+    with_axis(d, [&](auto a) {
+      momentum_sweep<decltype(a)::value>(lo, hi, nodes, mf, nm, u, v, w, F, U, V, W, K, ord, weigh,
+                                         finish);
+    });
   } else {
     Kokkos::parallel_for(
         "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {

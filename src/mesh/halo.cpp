@@ -1,5 +1,6 @@
 #include "mesh/halo.hpp"
 
+#include "core/axis.hpp"
 #include "core/error.hpp"
 #include "core/profiling.hpp"
 
@@ -154,12 +155,7 @@ void pack_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const B
 // Packs both sides' send slabs (the axis at compile time: constant index steps).
 void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
           const Buffer& b1, int first_field) {
-  if (p.d == 0)
-    pack_axis<0>(mesh, f0, p, b0, b1, first_field);
-  else if (p.d == 1)
-    pack_axis<1>(mesh, f0, p, b0, b1, first_field);
-  else
-    pack_axis<2>(mesh, f0, p, b0, b1, first_field);
+  with_axis(p.d, [&](auto a) { pack_axis<decltype(a)::value>(mesh, f0, p, b0, b1, first_field); });
 }
 
 // Fills every ghost layer of both sides of axis d of every field in one launch: unpacks what a
@@ -224,12 +220,7 @@ void fill_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const B
 // Fills every ghost layer of both sides of axis p.d (at compile time, as pack).
 void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
           const Buffer& b1, int first_field) {
-  if (p.d == 0)
-    fill_axis<0>(mesh, f0, p, b0, b1, first_field);
-  else if (p.d == 1)
-    fill_axis<1>(mesh, f0, p, b0, b1, first_field);
-  else
-    fill_axis<2>(mesh, f0, p, b0, b1, first_field);
+  with_axis(p.d, [&](auto a) { fill_axis<decltype(a)::value>(mesh, f0, p, b0, b1, first_field); });
 }
 
 // The whole exchange in one launch, for a block with no neighbour rank on any side (every side
