@@ -32,7 +32,6 @@ enum class Range {
   CellsPadded1,  // (n + 2)^3: mesh.cells_padded(1)
   NodesOwned,    // (n + 1)^3: mesh.nodes(Owned)
   NodeInterior,  // (E - 1)^3: remap::node_mass, nodes [1, E)
-  FacesAll,      // (E + 1) E^2: lagrange::volume_flux_{x,y,z}, the faces of every cell
   FacesOwned,    // (n + 1) E^2: remap::cell_flux, owned faces along the sweep, all rows across
   DualFaces,     // (n + 2)(n + 1)^2: remap::dual_face, both dual faces of every owned node
   HaloGhosts,    // every ghost point of the cycle's exchanges (see halo_points)
@@ -51,21 +50,19 @@ struct KernelTraffic {
 inline const std::vector<KernelTraffic>& cycle_table() {
   static const std::vector<KernelTraffic> t = {
       {"timestep::cfl", Range::CellsOwned, 6, 0, 1, "c q rho u v w ->"},
-      {"lagrange::volume_flux_x", Range::FacesAll, 1, 1, 2, "u -> fx"},
-      {"lagrange::volume_flux_y", Range::FacesAll, 1, 1, 2, "v -> fy"},
-      {"lagrange::volume_flux_z", Range::FacesAll, 1, 1, 2, "w -> fz"},
-      {"lagrange::predictor", Range::CellsAll, 7, 1, 1, "fx fy fz rho e p q -> p_half"},
+      // the six face volume fluxes of each cell found from the node velocities in the kernel
+      {"lagrange::predictor", Range::CellsAll, 7, 1, 1, "u v w rho e p q -> p_half"},
       {"lagrange::acceleration", Range::NodesOwned, 6, 6, 1,
        "p_half q rho u v w -> u v w ub vb wb"},
-      // (counts the non-positive Lagrangian volumes of owned cells from the same fx fy fz)
-      {"lagrange::corrector", Range::CellsAll, 7, 2, 1, "fx fy fz rho e p_half q -> e rho"},
-      // q over the padded cells, q = 0 in the outer ghost layer: q written once everywhere
-      {"lagrange::viscosity", Range::CellsPadded1, 5, 0, 1, "rho c u v w ->"},
-      {"lagrange::viscosity", Range::CellsAll, 0, 1, 1, "-> q"},
-      {"eos::pressure_sound_speed", Range::CellsAll, 2, 2, 1, "rho e -> p c"},
+      // (stores the face fluxes for the remap and the first sweep's cell volumes, and counts the
+      // non-positive Lagrangian volumes of owned cells)
+      {"lagrange::corrector", Range::CellsAll, 7, 7, 1,
+       "ub vb wb rho e p_half q -> fx fy fz e rho pre post"},
+      // p and c, then q over the padded cells from the jumps (q = 0 in the outer ghost layer)
+      {"lagrange::eos_viscosity", Range::CellsAll, 2, 3, 1, "rho e -> p c q"},
+      {"lagrange::eos_viscosity", Range::CellsPadded1, 3, 0, 1, "u v w ->"},
       {"health::check", Range::CellsOwned, 3, 0, 1, "rho e p ->"},
       {"health::check", Range::NodesOwned, 3, 0, 1, "u v w ->"},
-      {"remap::volumes", Range::CellsAll, 3, 2, 3, "fx fy fz -> pre post"},
       {"remap::node_mass", Range::NodeInterior, 2, 1, 3, "rho pre -> node_mass"},
       {"remap::cell_flux", Range::FacesOwned, 4, 2, 3,
        "vol_flux pre rho e -> mass_flux energy_flux"},
@@ -75,6 +72,8 @@ inline const std::vector<KernelTraffic>& cycle_table() {
       {"remap::momentum", Range::NodesOwned, 8, 4, 3,
        "u v w node_mass F U V W -> ub vb wb ke_loss"},
       {"remap::ke_fix", Range::CellsOwned, 4, 1, 3, "ke_loss rho post e -> e"},
+      // the next sweep's cell volumes (the first two sweeps; the first sweep's: the corrector)
+      {"remap::ke_fix", Range::CellsAll, 3, 2, 2, "fx fy fz -> pre post"},
       {"halo::fill", Range::HaloGhosts, 1, 1, 11, "ghost source -> ghost (per field)"},
   };
   return t;
@@ -120,8 +119,6 @@ inline double range_points(const Mesh& m, Range r) {
       return (n[0] + 1) * (n[1] + 1) * (n[2] + 1);
     case Range::NodeInterior:
       return (E[0] - 1) * (E[1] - 1) * (E[2] - 1);
-    case Range::FacesAll:  // the mean over the three axes' face arrays
-      return E[0] * E[1] * E[2] * (1 + (1 / E[0] + 1 / E[1] + 1 / E[2]) / 3);
     case Range::FacesOwned:  // the mean over the three sweeps
       return ((n[0] + 1) * E[1] * E[2] + E[0] * (n[1] + 1) * E[2] + E[0] * E[1] * (n[2] + 1)) / 3;
     case Range::DualFaces:

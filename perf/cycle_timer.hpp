@@ -38,7 +38,6 @@ inline long minor_faults() {
 inline CycleTimes run_cycles(hydro::Hydro& h, RunClock& clock, int warmup, int cycles) {
   CycleTimes ct;
   ct.cycles = cycles;
-  auto& state = h.state();
   Real& dt_old = clock.dt_old;
   double& t = clock.t;
   auto now = [] { return std::chrono::steady_clock::now(); };
@@ -57,7 +56,7 @@ inline CycleTimes run_cycles(hydro::Hydro& h, RunClock& clock, int warmup, int c
     Kokkos::fence();
     if (timed) ct.phase[0] += since(tp);
     tp = now();
-    h.lagrange(ts.dt);
+    h.lagrange(ts.dt, clock.cycle);
     Kokkos::fence();
     if (timed) ct.phase[1] += since(tp);
     tp = now();
@@ -65,8 +64,7 @@ inline CycleTimes run_cycles(hydro::Hydro& h, RunClock& clock, int warmup, int c
     Kokkos::fence();
     if (timed) ct.phase[2] += since(tp);
     tp = now();
-    h.equation_of_state(state.rho, state.e, state.p, state.c);
-    h.viscosity();
+    h.eos_viscosity();
     Kokkos::fence();
     if (timed) ct.phase[3] += since(tp);
     tp = now();

@@ -30,6 +30,55 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, 
          fz(i, j, k);
 }
 
+// The volume a face sweeps in one step, from its four node velocities along the face's normal
+// (`a`: the step's dt times a quarter of the face's area): the x face at node coordinate i of
+// cell (i, j, k), and the y and z ones. Hydro::volume_fluxes stores them; a kernel that needs a
+// cell's six faces can compute them here instead and gets the stored values' bits.
+KOKKOS_INLINE_FUNCTION Real face_flux_x(const Field3& u, int i, int j, int k, Real a) {
+  return a * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
+}
+KOKKOS_INLINE_FUNCTION Real face_flux_y(const Field3& v, int i, int j, int k, Real a) {
+  return a * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
+}
+KOKKOS_INLINE_FUNCTION Real face_flux_z(const Field3& w, int i, int j, int k, Real a) {
+  return a * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
+}
+
+// A cell's six face volume fluxes (low and high along each axis) from the node velocities.
+struct CellFaceFluxes {
+  Real xl, xh, yl, yh, zl, zh;
+  // the cell's volume change, in net_volume_flux's order of operations
+  KOKKOS_INLINE_FUNCTION Real net() const { return xh - xl + yh - yl + zh - zl; }
+};
+KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const Field3& u, const Field3& v,
+                                                       const Field3& w, int i, int j, int k,
+                                                       Real ax, Real ay, Real az) {
+  return {face_flux_x(u, i, j, k, ax), face_flux_x(u, i + 1, j, k, ax),
+          face_flux_y(v, i, j, k, ay), face_flux_y(v, i, j + 1, k, ay),
+          face_flux_z(w, i, j, k, az), face_flux_z(w, i, j, k + 1, az)};
+}
+
+// Which axes a remap step moves (`a*`) and which are still to be remapped, its own included
+// (`p*`), as 0 / 1 weights; and a cell's volume before the step (the Lagrangian volume less the
+// steps already done) and after it, from its volume changes along the three axes.
+struct StepWeights {
+  Real px, py, pz, ax, ay, az;
+};
+KOKKOS_INLINE_FUNCTION void step_volumes(Real vol, Real dvx, Real dvy, Real dvz,
+                                         const StepWeights& s, Real& pre, Real& post) {
+  const Real v0 = vol + s.px * dvx + s.py * dvy + s.pz * dvz;
+  pre = v0;
+  post = v0 - (s.ax * dvx + s.ay * dvy + s.az * dvz);
+}
+// The same for cell (i, j, k) from the stored face volume fluxes, into pre and post.
+KOKKOS_INLINE_FUNCTION void stored_step_volumes(const Field3& fx, const Field3& fy,
+                                                const Field3& fz, int i, int j, int k, Real vol,
+                                                const StepWeights& s, const Field3& pre,
+                                                const Field3& post) {
+  step_volumes(vol, fx(i + 1, j, k) - fx(i, j, k), fy(i, j + 1, k) - fy(i, j, k),
+               fz(i, j, k + 1) - fz(i, j, k), s, pre(i, j, k), post(i, j, k));
+}
+
 // Specific internal energy a cell of mass m and internal energy w = m max(e, 0) takes from the
 // KE fix (issue #16; docs/numerics.md, "One cycle", item 6): each of its 8 nodes holds, in
 // `kel`, either its kinetic-energy loss L >= 0, of which every cell takes 1/8, or, where the
@@ -199,6 +248,8 @@ class Hydro {
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
+  // p and c from the EOS, then q (a plain single-material scene does both in one launch).
+  void eos_viscosity();
   TimeStep time_step(Real dt_old, double t, double t_end) const;
   // One full cycle: Lagrangian step then remap; `cycle` sets the sweep order. Returns the
   // health of the Lagrangian volumes (a run stops when they collapse).
@@ -211,15 +262,35 @@ class Hydro {
   void equation_of_state(const Field3& rho, const Field3& e, const Field3& p,
                          const Field3& c) const;
   void viscosity();
-  Health lagrange(Real dt);
+  // The Lagrangian step; `cycle`, the cycle whose remap follows, lets the corrector write the
+  // first remap step's cell volumes (any other remap recomputes them).
+  Health lagrange(Real dt, long cycle = 0);
   void remap(long cycle);
   // One remap step over the faces normal to `axes`; `pending` marks the axes whose volume
   // change is not yet remapped (the step's own included).
   void remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending);
+  struct RemapStep {
+    std::array<bool, 3> axes, pending;
+    bool operator==(const RemapStep& o) const { return axes == o.axes && pending == o.pending; }
+    StepWeights weights() const {
+      return {Real(pending[0]), Real(pending[1]), Real(pending[2]),
+              Real(axes[0]),    Real(axes[1]),    Real(axes[2])};
+    }
+  };
+  // The remap steps of a cycle, in order: x, y, z on even cycles and z, y, x on odd ones, or
+  // the one unsplit step.
+  std::vector<RemapStep> remap_steps(long cycle) const;
 
  private:
   void exchange_cells();
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
+  // `next`: the step after this one (nullptr for the last), whose cell volumes the KE fix's
+  // launch writes.
+  void remap_step(const RemapStep& step, const RemapStep* next);
+  // A single-material scene without strength or burn, whose EOS and viscosity are one launch
+  // (the modules adjust p and c between the two).
+  bool plain() const { return !mm_ && !strength_ && !burn_; }
+  void viscosity_with(bool with_eos);
   void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
   // Multi-material pieces (multimat.cpp).
   void mm_equation_of_state() const;
@@ -261,6 +332,10 @@ class Hydro {
   unsigned carrier_mask_[kMaxCarriers] = {};
   Field3 carrier_flux_[kMaxCarriers], carrier_rho_[kMaxCarriers];
   State s_;
+  // The remap step whose cell volumes (pre_vol, post_vol) a fused launch has written ahead (the
+  // corrector the first step's, a step's KE fix the next one's), if any.
+  bool volumes_ready_ = false;
+  RemapStep volumes_for_{};
 };
 
 }  // namespace mp::hydro

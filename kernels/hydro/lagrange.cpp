@@ -12,14 +12,17 @@ namespace mp::hydro {
 namespace {
 
 // The single-material predictor over `box`: each cell's half-step density and energy from the
-// start-of-step volume fluxes, its half-step pressure from `pressure(rho, e, i, j, k)`.
+// start-of-step volume fluxes of its six faces (computed here from the node velocities, `a*`
+// the half step times a quarter of the face areas: no stored face fluxes and no launch for
+// them), its half-step pressure from `pressure(rho, e, i, j, k)`.
 template <class Pressure>
-void predictor_kernel(const Policy3& box, const Field3& fx, const Field3& fy, const Field3& fz,
-                      const Field3& rho, const Field3& e, const Field3& p, const Field3& q,
-                      const Field3& ph, Real vol, const Pressure& pressure) {
+void predictor_kernel(const Policy3& box, const Field3& u, const Field3& v, const Field3& w,
+                      Real ax, Real ay, Real az, const Field3& rho, const Field3& e,
+                      const Field3& p, const Field3& q, const Field3& ph, Real vol,
+                      const Pressure& pressure) {
   Kokkos::parallel_for(
       "lagrange::predictor", box, KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+        const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
         const Real mass = rho(i, j, k) * vol;
         const Real v_half = vol + dv;
         const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
@@ -135,6 +138,14 @@ void Hydro::exchange_nodes(const Field3& u, const Field3& v, const Field3& w) {
 void Hydro::prepare() {
   exchange_cells();
   exchange_nodes(s_.u, s_.v, s_.w);
+  eos_viscosity();
+}
+
+void Hydro::eos_viscosity() {
+  if (plain()) {
+    viscosity_with(true);
+    return;
+  }
   equation_of_state(s_.rho, s_.e, s_.p, s_.c);
   viscosity();
 }
@@ -175,7 +186,15 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
 }
 
 void Hydro::viscosity() {
-  auto rho = s_.rho, c = s_.c, q = s_.q, u = s_.u, v = s_.v, w = s_.w;
+  viscosity_with(false);
+}
+
+// `with_eos`: each cell's p and c from the scene's one EOS first, in the same launch (a plain
+// single-material scene: the viscosity reads only the cell's own c and rho, so the fields are
+// those of the two launches bit for bit).
+void Hydro::viscosity_with(bool with_eos) {
+  auto rho = s_.rho, e = s_.e, p = s_.p, c = s_.c, q = s_.q, u = s_.u, v = s_.v, w = s_.w;
+  const auto eos = eos_;
   const Real cq = opt_.q_quadratic, cl = opt_.q_linear;
   // Velocity jump across cell (i,j,k) along each axis, from the face-averaged node velocities.
   auto jump_x = [=] KOKKOS_FUNCTION(int i, int j, int k) {
@@ -206,7 +225,12 @@ void Hydro::viscosity() {
                       Mesh::ng + mesh_.owned_cells(2) + 1};
   const Real rx = Real(1) / g.dx[0], ry = Real(1) / g.dx[1], rz = Real(1) / g.dx[2];
   Kokkos::parallel_for(
-      "lagrange::viscosity", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
+      with_eos ? "lagrange::eos_viscosity" : "lagrange::viscosity", mesh_.cells(Region::All),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        if (with_eos) {
+          p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
+          c(i, j, k) = eos.sound_speed_cut(rho(i, j, k), e(i, j, k));
+        }
         if (i < plo || j < plo || k < plo || i >= phi[0] || j >= phi[1] || k >= phi[2]) {
           q(i, j, k) = 0;
           return;
@@ -223,44 +247,50 @@ void Hydro::viscosity() {
       });
 }
 
+// A face's volume flux per unit node velocity over a step dt: dt times a quarter of the face's
+// area, per axis (one order of operations for every kernel that finds face fluxes).
+static std::array<Real, 3> face_factors(const Geometry& g, Real dt) {
+  return {dt * g.dx[1] * g.dx[2] * Real(0.25), dt * g.dx[0] * g.dx[2] * Real(0.25),
+          dt * g.dx[0] * g.dx[1] * Real(0.25)};
+}
+
 // Volume swept by each face in time dt, from the face-averaged node velocities.
 void Hydro::volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt) {
   const Geometry g = mesh_.geometry();
   const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
             ez = mesh_.extent(Centering::Cell, 2);
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  const Real ax = dt * g.dx[1] * g.dx[2] * Real(0.25), ay = dt * g.dx[0] * g.dx[2] * Real(0.25),
-             az = dt * g.dx[0] * g.dx[1] * Real(0.25);
+  const auto f = face_factors(g, dt);
+  const Real ax = f[0], ay = f[1], az = f[2];
   // One launch per face set (one launch for the three, with a branch per face set, took 1.96
-  // against 1.36 ms per cycle at 64^3, 2 threads).
+  // against 1.36 ms per cycle at 64^3, 2 threads). Multi-material scenes only: a
+  // single-material step finds the faces in its predictor and corrector.
   Kokkos::parallel_for(
       "lagrange::volume_flux_x", Policy3({0, 0, 0}, {ex + 1, ey, ez}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        fx(i, j, k) = ax * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
-      });
+      KOKKOS_LAMBDA(int i, int j, int k) { fx(i, j, k) = face_flux_x(u, i, j, k, ax); });
   Kokkos::parallel_for(
       "lagrange::volume_flux_y", Policy3({0, 0, 0}, {ex, ey + 1, ez}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        fy(i, j, k) = ay * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
-      });
+      KOKKOS_LAMBDA(int i, int j, int k) { fy(i, j, k) = face_flux_y(v, i, j, k, ay); });
   Kokkos::parallel_for(
       "lagrange::volume_flux_z", Policy3({0, 0, 0}, {ex, ey, ez + 1}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        fz(i, j, k) = az * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
-      });
+      KOKKOS_LAMBDA(int i, int j, int k) { fz(i, j, k) = face_flux_z(w, i, j, k, az); });
 }
 
-Health Hydro::lagrange(Real dt) {
+Health Hydro::lagrange(Real dt, long cycle) {
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
   auto rho = s_.rho, e = s_.e, p = s_.p, q = s_.q, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const auto eos = eos_;
+  const Real half = Real(0.5) * dt;
+  const auto hf = face_factors(g, half), cf = face_factors(g, dt);
+  auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
 
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
-  volume_fluxes(s_.u, s_.v, s_.w, Real(0.5) * dt);
+  // (A single-material predictor finds its cells' face fluxes itself.)
   const bool mixed = burn_ && !mm_ && burn_->mixed();
   if (mm_) {
+    volume_fluxes(s_.u, s_.v, s_.w, half);
     mm_predictor(vol);
   } else if (mixed) {
     // an explosive with an unreacted EOS: the two phases at the half step (burn.hpp)
@@ -268,13 +298,13 @@ Health Hydro::lagrange(Real dt) {
     const Real e0 = burn_->e0();
     auto f = burn_->fraction();
     predictor_kernel(
-        mesh_.cells(Region::All), fx, fy, fz, rho, e, p, q, ph, vol,
+        mesh_.cells(Region::All), u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
           return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         });
   } else {
     predictor_kernel(
-        mesh_.cells(Region::All), fx, fy, fz, rho, e, p, q, ph, vol,
+        mesh_.cells(Region::All), u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int, int, int) { return eos.pressure_cut(r, en); });
   }
   if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
@@ -288,7 +318,6 @@ Health Hydro::lagrange(Real dt) {
   auto fsx = fs[0], fsy = fs[1], fsz = fs[2];
 
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
-  auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
   const Real axf = g.dx[1] * g.dx[2] * Real(0.25), ayf = g.dx[0] * g.dx[2] * Real(0.25),
              azf = g.dx[0] * g.dx[1] * Real(0.25);
   Kokkos::parallel_for(
@@ -328,7 +357,8 @@ Health Hydro::lagrange(Real dt) {
                   {wb, Centering::Node, {1, 1, -1}}});
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
-  volume_fluxes(ub, vb, wb, dt);
+  // (A single-material corrector writes the face fluxes itself, for the remap.)
+  if (mm_) volume_fluxes(ub, vb, wb, dt);
   // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
   if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
   // The Lagrangian volumes must stay positive (owned cells). A single-material cycle counts
@@ -341,10 +371,27 @@ Health Hydro::lagrange(Real dt) {
   if (mm_) {
     mm_corrector(vol);
   } else {
+    // Each cell finds its six face fluxes, stores its three low faces (and the high ones at
+    // the block's high side), and writes the cycle's first remap step's volumes: three face
+    // launches and the first remap::volumes saved (fields bit for bit: the same arithmetic).
+    const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
+              ez = mesh_.extent(Centering::Cell, 2);
+    const Real cx = cf[0], cy = cf[1], cz = cf[2];
+    const RemapStep first = remap_steps(cycle).front();
+    const StepWeights sw = first.weights();
+    auto pre = s_.pre_vol, post = s_.post_vol;
     Kokkos::parallel_reduce(
         "lagrange::corrector", mesh_.cells(Region::All),
         KOKKOS_LAMBDA(int i, int j, int k, long& n) {
-          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+          const CellFaceFluxes f = cell_face_fluxes(ub, vb, wb, i, j, k, cx, cy, cz);
+          fx(i, j, k) = f.xl;
+          fy(i, j, k) = f.yl;
+          fz(i, j, k) = f.zl;
+          if (i == ex - 1) fx(i + 1, j, k) = f.xh;
+          if (j == ey - 1) fy(i, j + 1, k) = f.yh;
+          if (k == ez - 1) fz(i, j, k + 1) = f.zh;
+          step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
+          const Real dv = f.net();
           const Real mass = rho(i, j, k) * vol;
           e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
           rho(i, j, k) = mass / (vol + dv);
@@ -353,6 +400,10 @@ Health Hydro::lagrange(Real dt) {
             ++n;
         },
         bad);
+  }
+  if (!mm_) {
+    volumes_ready_ = true;
+    volumes_for_ = remap_steps(cycle).front();
   }
   // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
   if (burn_) burn_->update(rho, double(dt));
@@ -381,7 +432,7 @@ Health Hydro::step(Real dt, long cycle) {
   Health h;
   {
     ProfileRegion r("hydro::lagrange");
-    h = lagrange(dt);
+    h = lagrange(dt, cycle);
   }
   if (!h.ok) return h;
   {
@@ -390,8 +441,7 @@ Health Hydro::step(Real dt, long cycle) {
   }
   {
     ProfileRegion r("hydro::eos_viscosity");
-    equation_of_state(s_.rho, s_.e, s_.p, s_.c);
-    viscosity();
+    eos_viscosity();
   }
   ProfileRegion r("hydro::health");
   return check();
