@@ -294,7 +294,8 @@ class Hydro {
   void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
   // Multi-material pieces (multimat.cpp).
   void mm_equation_of_state() const;
-  void mm_predictor(Real vol);
+  // (`f`: the half step's face factors, dt/2 times a quarter of each axis's face area)
+  void mm_predictor(Real vol, const std::array<Real, 3>& f);
   void mm_corrector(Real vol);
   template <class Dev>
   void mm_face_fluxes(const Dev& dev, int d);

@@ -287,11 +287,11 @@ Health Hydro::lagrange(Real dt, long cycle) {
   auto u = s_.u, v = s_.v, w = s_.w, ub = s_.ub, vb = s_.vb, wb = s_.wb;
 
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
-  // (A single-material predictor finds its cells' face fluxes itself.)
+  // (Each cell's six face fluxes are found in the predictor's launch, from the node
+  // velocities: no stored face fluxes.)
   const bool mixed = burn_ && !mm_ && burn_->mixed();
   if (mm_) {
-    volume_fluxes(s_.u, s_.v, s_.w, half);
-    mm_predictor(vol);
+    mm_predictor(vol, hf);
   } else if (mixed) {
     // an explosive with an unreacted EOS: the two phases at the half step (burn.hpp)
     const auto un = burn_->unreacted();

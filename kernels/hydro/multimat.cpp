@@ -416,15 +416,16 @@ void Hydro::mm_equation_of_state() const {
       });
 }
 
-void Hydro::mm_predictor(Real vol) {
+void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const auto mats = mats_;
   auto q = s_.q, ph = s_.p_half, rho = s_.rho;
-  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+  auto u = s_.u, v = s_.v, w = s_.w;
+  const Real ax = f[0], ay = f[1], az = f[2];
   const BurnHook bh = burn_hook(burn_.get());
   mm_->for_cells(
       "lagrange::predictor", all_lo(), all_hi(mesh_),
       KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+        const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
         const Real v_half = vol + dv;
         Real sum = 0, last = 0;
         int n = 0;
