@@ -244,7 +244,10 @@ struct FaceFluxes {
   unsigned cmask[kMaxCarriers];
   Field3 cflux[kMaxCarriers];
 
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+  // (force-inlined: past GCC's size limits the loop called it once per face; inlined, the
+  // compact layout's remap::material_flux takes about 10 % less, 1.23 -> 1.08 ms per cycle on
+  // the layout study's 2-material, 1 %-mixed block, 1.63 -> 1.50 at 5 %)
+  KOKKOS_FORCEINLINE_FUNCTION void operator()(int i, int j, int k) const {
     const int sx = d == 0, sy = d == 1, sz = d == 2;
     const Real f = vf(i, j, k);
     const int dn = f > 0 ? -1 : 0;
