@@ -6,6 +6,7 @@
 //   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
 //            permutations of the axes; stable for a Courant-number sum below one).
 #include "core/axis.hpp"
+#include "core/columns.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/profiling.hpp"
@@ -338,9 +339,47 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     }
     if (strength_ || burn_) mm_clear_absent();
   } else {
-    Kokkos::parallel_for(
-        "remap::cell_update", mesh_.cells_padded(1),
-        KOKKOS_LAMBDA(int i, int j, int k) { cell_update(i, j, k); });
+    // (one axis, its flux faces' offsets constants: a column loop GCC vectorizes; the same
+    // operations as cell_update's, bit for bit: 0 + x is x for the one axis's terms)
+    const int lo[3] = {Mesh::ng - 1, Mesh::ng - 1, Mesh::ng - 1};
+    const int hi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
+                       Mesh::ng + mesh_.owned_cells(2) + 1};
+    if (int(ax + ay + az) == 1) {
+      with_axis(ax > 0   ? 0
+                : ay > 0 ? 1
+                         : 2,
+                [&](auto a) {
+                  constexpr int D = decltype(a)::value;
+                  constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
+                  const Field3 mf = D == 0 ? mfx : D == 1 ? mfy : mfz;
+                  const Field3 ef = D == 0 ? efx : D == 1 ? efy : efz;
+                  for_columns(
+                      "remap::cell_update", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+                        const auto r = column(rho, i, j), en = column(e, i, j),
+                                   p0 = column(pre, i, j), p1 = column(post, i, j);
+                        const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy),
+                                   el = column(ef, i, j), eh = column(ef, i + sx, j + sy);
+#pragma GCC ivdep
+                        for (int k = k0; k < k1; ++k) {
+                          const Real m0 = r[k] * p0[k];
+                          const Real dm = Real(0) + (ml[k] - mh[k + sz]);
+                          const Real de = Real(0) + (el[k] - eh[k + sz]);
+                          const Real m1 = m0 + dm;
+                          const Real e1 = (en[k] * m0 + de) / m1;
+                          en[k] = e1;
+                          r[k] = m1 / p1[k];
+                          // the volume before the step is read no more in it: the cell's internal
+                          // energy takes its place, the KE fix's weight (ke_fix_share), and the
+                          // next step recomputes it
+                          p0[k] = m1 * mmax(e1, Real(0));
+                        }
+                      });
+                });
+    } else {
+      Kokkos::parallel_for(
+          "remap::cell_update", mesh_.cells_padded(1),
+          KOKKOS_LAMBDA(int i, int j, int k) { cell_update(i, j, k); });
+    }
   }
 
   // Momentum through the dual faces normal to each moved axis. A split sweep (one axis) first

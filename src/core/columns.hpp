@@ -1,0 +1,49 @@
+// Cell and node loops as k-columns (issue #15). A Kokkos MDRange over (i, j, k) calls its body
+// once per point, and GCC leaves that loop scalar: every field access goes through the view's
+// index arithmetic, whose strides it must reload after each store it cannot prove apart from
+// them. A body that takes a whole column (i, j) and indexes plain pointers with k, under
+// `#pragma GCC ivdep` (a kernel writes a field only at its own point), is a loop GCC vectorizes.
+// One body serves every backend: for_columns calls it per (i, j) column on host backends and
+// per point on GPU backends, and column() is a plain pointer where the views are LayoutRight
+// (k contiguous: every host backend) and a strided accessor elsewhere.
+#pragma once
+#include <string>
+#include <type_traits>
+
+#include "core/types.hpp"
+
+namespace mp {
+
+// Field f along k at (i, j), read or written as c[k] for the view's own k.
+template <class T>
+struct StridedColumn {
+  T* p;
+  long s;
+  KOKKOS_INLINE_FUNCTION T& operator[](int k) const { return p[k * s]; }
+};
+template <class View>
+KOKKOS_INLINE_FUNCTION auto column(const View& f, int i, int j) {
+  using T = typename View::value_type;
+  if constexpr (std::is_same_v<typename View::array_layout, Kokkos::LayoutRight>)
+    return static_cast<T*>(f.data() + (long(i) * f.extent(1) + j) * f.extent(2));
+  else
+    return StridedColumn<T>{&f(i, j, 0), long(f.stride(2))};
+}
+
+// body(i, j, k0, k1) for every (i, j, k) of the box [lo, hi): the body runs k from k0 to k1
+// (one call per column on host backends, k1 = k0 + 1 on GPU backends).
+template <class Body>
+void for_columns(const std::string& name, const int lo[3], const int hi[3], const Body& body) {
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+  Kokkos::parallel_for(
+      name, Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k) { body(i, j, k, k + 1); });
+#else
+  const int k0 = lo[2], k1 = hi[2];
+  Kokkos::parallel_for(
+      name, Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2> >({lo[0], lo[1]}, {hi[0], hi[1]}),
+      KOKKOS_LAMBDA(int i, int j) { body(i, j, k0, k1); });
+#endif
+}
+
+}  // namespace mp
