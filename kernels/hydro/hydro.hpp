@@ -85,18 +85,30 @@ KOKKOS_INLINE_FUNCTION void stored_step_volumes(const Field3& fx, const Field3& 
 // remap made kinetic energy (L < 0), L over the 8 cells' w summed, so that each cell pays the
 // same fraction of its own internal energy — a cold cell beside hot ones pays little, and the
 // 8 cells together pay L: total energy is kept.
-KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k, Real m, Real w) {
+template <class Corner>
+KOKKOS_INLINE_FUNCTION Real ke_fix_share_of(const Corner& kel, Real m, Real w) {
+  // separate sums, the two being in different units, over the corners in the order a, b, c; as
+  // selects, not branches, so that a column loop vectorizes (adding +0 to the other sum leaves
+  // it bit for bit)
   Real gain = 0, frac = 0;
-  for (int c = 0; c < 2; ++c)
-    for (int b = 0; b < 2; ++b)
-      for (int a = 0; a < 2; ++a) {
-        const Real x = kel(i + a, j + b, k + c);
-        if (x >= 0)  // (separate sums: the two are in different units)
-          gain += x;
-        else
-          frac += x;
-      }
+  auto add = [&](Real x) {
+    const bool pos = x >= 0;
+    gain += pos ? x : Real(0);
+    frac += pos ? Real(0) : x;
+  };
+  add(kel(0, 0, 0));
+  add(kel(1, 0, 0));
+  add(kel(0, 1, 0));
+  add(kel(1, 1, 0));
+  add(kel(0, 0, 1));
+  add(kel(1, 0, 1));
+  add(kel(0, 1, 1));
+  add(kel(1, 1, 1));
   return (Real(0.125) * gain + frac * w) / m;
+}
+// (`kel(a, b, c)`: the loss at node (i + a, j + b, k + c))
+KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k, Real m, Real w) {
+  return ke_fix_share_of([&](int a, int b, int c) { return kel(i + a, j + b, k + c); }, m, w);
 }
 
 // Sum of a node field over the 8 corners of cell (i, j, k), x fastest.

@@ -190,6 +190,32 @@ void momentum_sweep(const int lo[3], const int hi[3], const Policy3& nodes, cons
       });
 }
 
+// The KE fix of cell k of a column (single-material scenes; item 6 of "One cycle"): the cell's
+// density, energy and volume after the sweep as columns, and its 8 nodes' losses as the node
+// columns (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1.
+template <class C, class K>
+KOKKOS_INLINE_FUNCTION void ke_fix_cell(const C& r, const C& en, const C& p1, const K& c00,
+                                        const K& c10, const K& c01, const K& c11, int k) {
+  const Real m = r[k] * p1[k];
+  const Real x[8] = {c00[k],     c10[k],     c01[k],     c11[k],
+                     c00[k + 1], c10[k + 1], c01[k + 1], c11[k + 1]};
+  const Real de = ke_fix_share_of([&](int a, int b, int c) { return x[a + 2 * b + 4 * c]; }, m,
+                                  m * mmax(en[k], Real(0)));
+  en[k] += mmax(de, ke_fix_floor(en[k]));
+}
+
+// The KE fix over a box as k-columns (core/columns.hpp).
+struct KeFixColumns {
+  Field3 rho, e, post, kel;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    const auto r = column(rho, i, j), en = column(e, i, j), p1 = column(post, i, j);
+    const auto c00 = column(kel, i, j), c10 = column(kel, i + 1, j), c01 = column(kel, i, j + 1),
+               c11 = column(kel, i + 1, j + 1);
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+  }
+};
+
 }  // namespace
 
 std::vector<Hydro::RemapStep> Hydro::remap_steps(long cycle) const {
@@ -251,15 +277,31 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   volumes_ready_ = false;
 
   // Dual-cell (node) mass before the step.
-  Kokkos::parallel_for(
-      "remap::node_mass", Policy3({1, 1, 1}, {ex, ey, ez}), KOKKOS_LAMBDA(int i, int j, int k) {
-        Real m = 0;
-        for (int c = 0; c < 2; ++c)
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a)
-              m += rho(i - 1 + a, j - 1 + b, k - 1 + c) * pre(i - 1 + a, j - 1 + b, k - 1 + c);
-        nm(i, j, k) = Real(0.125) * m;
-      });
+  // (k-columns: the node's 8 cells are the columns (i - 1, j - 1), (i, j - 1), (i - 1, j),
+  // (i, j) at k - 1 and k, summed in the order a, b, c)
+  {
+    const int lo[3] = {1, 1, 1}, hi[3] = {ex, ey, ez};
+    for_columns(
+        "remap::node_mass", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+          const auto r00 = column(rho, i - 1, j - 1), r10 = column(rho, i, j - 1),
+                     r01 = column(rho, i - 1, j), r11 = column(rho, i, j);
+          const auto v00 = column(pre, i - 1, j - 1), v10 = column(pre, i, j - 1),
+                     v01 = column(pre, i - 1, j), v11 = column(pre, i, j);
+          const auto out = column(nm, i, j);
+#pragma GCC ivdep
+          for (int k = k0; k < k1; ++k) {
+            Real m = 0;
+            for (int c = 0; c < 2; ++c) {
+              const int kc = k - 1 + c;
+              m += r00[kc] * v00[kc];
+              m += r10[kc] * v10[kc];
+              m += r01[kc] * v01[kc];
+              m += r11[kc] * v11[kc];
+            }
+            out[k] = Real(0.125) * m;
+          }
+        });
+  }
 
   // Mass and energy through the owned faces normal to each axis of the step (all rows across),
   // then the ghost faces from the neighbours.
@@ -459,29 +501,46 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     mm_ke_fix();
   } else if (opt_.ke_fix) {
     // Owned cells read owned nodes only.
-    auto fix = [=] KOKKOS_FUNCTION(int i, int j, int k) {
-      const Real m = rho(i, j, k) * post(i, j, k);
-      const Real de = ke_fix_share(kel, i, j, k, m, m * mmax(e(i, j, k), Real(0)));
-      e(i, j, k) += mmax(de, ke_fix_floor(e(i, j, k)));
-    };
+    // a column's cells (k-columns, core/columns.hpp): each cell's 8 nodes are the columns
+    // (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1
+    const KeFixColumns fix{rho, e, post, kel};
     if (next) {
       // Every cell, ghosts included, then gets the next step's volumes (from the volume fluxes
       // alone) in the same launch. The ghost cells take a fix too (finite: a ghost node's loss
       // is never written, 0), which the cell exchange that ends the step overwrites: without a
-      // branch to the owned cells the launch takes 2.7 ms per cycle at 64^3 (2 threads), with
-      // one 3.4 (a masked store, 2.9).
+      // branch to the owned cells the launch took 2.7 ms per cycle at 64^3 (2 threads), with
+      // one 3.4 (a masked store, 2.9); as k-columns, 1.2.
       const StepWeights nw = next->weights();
-      Kokkos::parallel_for(
-          "remap::ke_fix", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-            fix(i, j, k);
-            stored_step_volumes(fx, fy, fz, i, j, k, vol, nw, pre, post);
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) {
+        const auto r = mesh_.range(Centering::Cell, Region::All, a);
+        lo[a] = r[0];
+        hi[a] = r[1];
+      }
+      for_columns(
+          "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+            const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
+                       p1 = column(post, i, j);
+            const auto c00 = column(kel, i, j), c10 = column(kel, i + 1, j),
+                       c01 = column(kel, i, j + 1), c11 = column(kel, i + 1, j + 1);
+            const auto xl = column(fx, i, j), xh = column(fx, i + 1, j), yl = column(fy, i, j),
+                       yh = column(fy, i, j + 1), zc = column(fz, i, j);
+#pragma GCC ivdep
+            for (int k = k0; k < k1; ++k) {
+              ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+              step_volumes(vol, xh[k] - xl[k], yh[k] - yl[k], zc[k + 1] - zc[k], nw, p0[k], p1[k]);
+            }
           });
       volumes_ready_ = true;
       volumes_for_ = *next;
     } else {
-      Kokkos::parallel_for(
-          "remap::ke_fix", mesh_.cells(Region::Owned),
-          KOKKOS_LAMBDA(int i, int j, int k) { fix(i, j, k); });
+      int lo[3], hi[3];
+      for (int a = 0; a < 3; ++a) {
+        const auto r = mesh_.range(Centering::Cell, Region::Owned, a);
+        lo[a] = r[0];
+        hi[a] = r[1];
+      }
+      for_columns("remap::ke_fix", lo, hi, fix);
     }
   }
   std::swap(s_.u, s_.ub);
