@@ -20,7 +20,8 @@ namespace {
 // Mass flux through the dual face between node c = (ci, cj, ck) and node c + e_d: the average
 // of the mass fluxes through the two cell faces bounding cell c along d, over the four cells
 // around the node line.
-KOKKOS_INLINE_FUNCTION Real dual_mass_flux(const Field3& mf, int ci, int cj, int ck, int d) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real dual_mass_flux(const F3& mf, int ci, int cj, int ck, int d) {
   const int sx = d == 0, sy = d == 1, sz = d == 2;
   // unit steps along the two transverse axes
   const int tx1 = d == 0 ? 0 : 1, ty1 = d == 0 ? 1 : 0, tz1 = 0;
@@ -42,7 +43,8 @@ struct DualWind {
   bool pos;  // f > 0: node c gives
   Real sigma;
 };
-KOKKOS_INLINE_FUNCTION DualWind dual_wind(const Field3& nm, int ci, int cj, int ck, int d, Real f) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION DualWind dual_wind(const F3& nm, int ci, int cj, int ck, int d, Real f) {
   const int sx = d == 0, sy = d == 1, sz = d == 2;
   const Real m1 = nm(ci, cj, ck), m2 = nm(ci + sx, cj + sy, ck + sz);
   return {f > 0, mabs(f) / (f > 0 ? m1 : m2)};
@@ -53,7 +55,8 @@ KOKKOS_INLINE_FUNCTION DualWind dual_wind(const Field3& nm, int ci, int cj, int 
 // selected from them (a sweep's loads are then fixed offsets: remap::dual_face took 0.69x the
 // time of the branch on the wind, 48^3, 1 thread). `donor` and `receiver` get the values of the
 // two nodes of the face.
-KOKKOS_INLINE_FUNCTION Real dual_face_value(const Field3& phi, const DualWind& wd, int ci, int cj,
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real dual_face_value(const F3& phi, const DualWind& wd, int ci, int cj,
                                             int ck, int d, int ord, Real& donor, Real& receiver) {
   const int sx = d == 0, sy = d == 1, sz = d == 2;
   const Real p0 = phi(ci - sx, cj - sy, ck - sz), p1 = phi(ci, cj, ck),
@@ -110,9 +113,10 @@ KOKKOS_INLINE_FUNCTION Real dual_face_ke(Real f, Real uf, Real vf, Real wf, cons
 struct DualFace {
   Real f, u, v, w, k;
 };
-KOKKOS_INLINE_FUNCTION DualFace dual_face(const Field3& mf, const Field3& nm, const Field3& u,
-                                          const Field3& v, const Field3& w, int ci, int cj, int ck,
-                                          int d, int ord, bool weigh) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION DualFace dual_face(const F3& mf, const F3& nm, const F3& u, const F3& v,
+                                          const F3& w, int ci, int cj, int ck, int d, int ord,
+                                          bool weigh) {
   DualFace r;
   r.f = dual_mass_flux(mf, ci, cj, ck, d);
   const DualWind wd = dual_wind(nm, ci, cj, ck, d, r.f);
@@ -134,18 +138,28 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
                      const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
                      int ord) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
-  Kokkos::parallel_for(
-      "remap::cell_flux", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real f = vf(i, j, k);
-        // face i lies between cells i-1 and i; the donor is the cell the flow leaves
-        const int dn = f > 0 ? -1 : 0;  // donor offset from the face index
-        const int st = f > 0 ? 1 : -1;  // wind direction in index steps
-        const int di = i + dn * sx, dj = j + dn * sy, dk = k + dn * sz;
-        const int ui = di - st * sx, uj = dj - st * sy, uk = dk - st * sz;
-        const int wi = di + st * sx, wj = dj + st * sy, wk = dk + st * sz;
-        donor_flux(f, pre(di, dj, dk), rho(ui, uj, uk), rho(di, dj, dk), rho(wi, wj, wk),
-                   e(ui, uj, uk), e(di, dj, dk), e(wi, wj, wk), ord, mf(i, j, k), ef(i, j, k));
+  // (k-columns, core/columns.hpp; the four cells along D around the face are loaded whatever
+  // the wind, and the donor's stencil selected from them: fixed offsets, as dual_face_value)
+  for_columns(
+      "remap::cell_flux", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto vfa = local(vf), pa = local(pre), ra = local(rho), ea = local(e);
+        const auto mfa = local(mf), efa = local(ef);
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) {
+          const Real f = vfa(i, j, k);
+          // face i lies between cells i-1 and i; the donor is the cell the flow leaves (i - 1
+          // when f > 0, up i - 2, down i; else i, up i + 1, down i - 1)
+          const bool pos = f > 0;
+          auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
+          const Real rm2 = at(ra, -2), rm1 = at(ra, -1), r0 = at(ra, 0), r1 = at(ra, 1);
+          const Real em2 = at(ea, -2), em1 = at(ea, -1), e0 = at(ea, 0), e1 = at(ea, 1);
+          const Real pd = pos ? at(pa, -1) : at(pa, 0);
+          Real m, en;
+          donor_flux(f, pd, pos ? rm2 : r1, pos ? rm1 : r0, pos ? r0 : rm1, pos ? em2 : e1,
+                     pos ? em1 : e0, pos ? e0 : em1, ord, m, en);
+          mfa(i, j, k) = m;
+          efa(i, j, k) = en;
+        }
       });
 }
 
@@ -154,15 +168,20 @@ void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const F
                      const Field3& u, const Field3& v, const Field3& w, const Field3& F,
                      const Field3& U, const Field3& V, const Field3& W, const Field3& K, int ord,
                      bool weigh) {
-  Kokkos::parallel_for(
-      "remap::dual_face", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        const DualFace df = dual_face(mf, nm, u, v, w, i, j, k, D, ord, weigh);
-        F(i, j, k) = df.f;
-        U(i, j, k) = df.u;
-        V(i, j, k) = df.v;
-        W(i, j, k) = df.w;
-        K(i, j, k) = df.k;
+  // (k-columns, core/columns.hpp)
+  for_columns(
+      "remap::dual_face", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto mfa = local(mf), nma = local(nm), ua = local(u), va = local(v), wa = local(w);
+        const auto Fa = local(F), Ua = local(U), Va = local(V), Wa = local(W), Ka = local(K);
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) {
+          const DualFace df = dual_face(mfa, nma, ua, va, wa, i, j, k, D, ord, weigh);
+          Fa(i, j, k) = df.f;
+          Ua(i, j, k) = df.u;
+          Va(i, j, k) = df.v;
+          Wa(i, j, k) = df.w;
+          Ka(i, j, k) = df.k;
+        }
       });
 }
 
@@ -171,22 +190,27 @@ void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const F
 // nodes from their two faces ("remap::momentum"; `finish` stores the new velocities and the
 // node's kinetic-energy discrepancy).
 template <int D, class Finish>
-void momentum_sweep(const int lo[3], const int hi[3], const Policy3& nodes, const Field3& mf,
-                    const Field3& nm, const Field3& u, const Field3& v, const Field3& w,
-                    const Field3& F, const Field3& U, const Field3& V, const Field3& W,
-                    const Field3& K, int ord, bool weigh, const Finish& finish) {
+void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const int nhi[3],
+                    const Field3& mf, const Field3& nm, const Field3& u, const Field3& v,
+                    const Field3& w, const Field3& F, const Field3& U, const Field3& V,
+                    const Field3& W, const Field3& K, int ord, bool weigh, const Finish& finish) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
   // (one launch with the cell update took 10.5 against 8.3 ms per cycle for the two at
   // 64^3, 2 threads: the branch per point costs more than the launch)
   dual_face_sweep<D>(lo, hi, mf, nm, u, v, w, F, U, V, W, K, ord, weigh);
-  Kokkos::parallel_for(
-      "remap::momentum", nodes, KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
-        DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
-        const int li = i - sx, lj = j - sy, lk = k - sz;
-        du.add(F(li, lj, lk), F(i, j, k), U(li, lj, lk), U(i, j, k), V(li, lj, lk), V(i, j, k),
-               W(li, lj, lk), W(i, j, k), K(li, lj, lk), K(i, j, k));
-        finish(i, j, k, m0, u0, v0, w0, du);
+  for_columns(
+      "remap::momentum", nlo, nhi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto ua = local(u), va = local(v), wa = local(w), nma = local(nm);
+        const auto Fa = local(F), Ua = local(U), Va = local(V), Wa = local(W), Ka = local(K);
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) {
+          const Real u0 = ua(i, j, k), v0 = va(i, j, k), w0 = wa(i, j, k), m0 = nma(i, j, k);
+          DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
+          const int li = i - sx, lj = j - sy, lk = k - sz;
+          du.add(Fa(li, lj, lk), Fa(i, j, k), Ua(li, lj, lk), Ua(i, j, k), Va(li, lj, lk),
+                 Va(i, j, k), Wa(li, lj, lk), Wa(i, j, k), Ka(li, lj, lk), Ka(i, j, k));
+          finish(i, j, k, m0, u0, v0, w0, du);
+        }
       });
 }
 
@@ -476,10 +500,15 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       lo[a] = r[0] - (a == d);
       hi[a] = r[1];
     }
-    const Policy3 nodes = mesh_.nodes(Region::Owned);
+    int nlo[3], nhi[3];  // the owned nodes
+    for (int a = 0; a < 3; ++a) {
+      const auto r = mesh_.range(Centering::Node, Region::Owned, a);
+      nlo[a] = r[0];
+      nhi[a] = r[1];
+    }
     with_axis(d, [&](auto a) {
-      momentum_sweep<decltype(a)::value>(lo, hi, nodes, mf, nm, u, v, w, F, U, V, W, K, ord, weigh,
-                                         finish);
+      momentum_sweep<decltype(a)::value>(lo, hi, nlo, nhi, mf, nm, u, v, w, F, U, V, W, K, ord,
+                                         weigh, finish);
     });
   } else {
     Kokkos::parallel_for(

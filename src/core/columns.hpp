@@ -30,6 +30,27 @@ KOKKOS_INLINE_FUNCTION auto column(const View& f, int i, int j) {
     return StridedColumn<T>{&f(i, j, 0), long(f.stride(2))};
 }
 
+// A view's data as a plain pointer and strides, indexed (i, j, k) like the view: for the point
+// functions a column loop calls (templated on the field type). Made inside the column's body, it
+// is a local value GCC keeps in registers, so the loop's loads are plain offsets from it.
+template <class T, bool Unit>
+struct Local3 {
+  T* p;
+  long si, sj, sk;
+  KOKKOS_INLINE_FUNCTION T& operator()(int i, int j, int k) const {
+    if constexpr (Unit)
+      return p[i * si + j * sj + k];
+    else
+      return p[i * si + j * sj + k * sk];
+  }
+};
+template <class View>
+KOKKOS_INLINE_FUNCTION auto local(const View& f) {
+  using T = typename View::value_type;
+  constexpr bool unit = std::is_same_v<typename View::array_layout, Kokkos::LayoutRight>;
+  return Local3<T, unit>{f.data(), long(f.stride(0)), long(f.stride(1)), long(f.stride(2))};
+}
+
 // body(i, j, k0, k1) for every (i, j, k) of the box [lo, hi): the body runs k from k0 to k1
 // (one call per column on host backends, k1 = k0 + 1 on GPU backends).
 template <class Body>
