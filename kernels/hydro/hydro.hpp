@@ -34,13 +34,16 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, 
 // (`a`: the step's dt times a quarter of the face's area): the x face at node coordinate i of
 // cell (i, j, k), and the y and z ones. Hydro::volume_fluxes stores them; a kernel that needs a
 // cell's six faces can compute them here instead and gets the stored values' bits.
-KOKKOS_INLINE_FUNCTION Real face_flux_x(const Field3& u, int i, int j, int k, Real a) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real face_flux_x(const F3& u, int i, int j, int k, Real a) {
   return a * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
 }
-KOKKOS_INLINE_FUNCTION Real face_flux_y(const Field3& v, int i, int j, int k, Real a) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real face_flux_y(const F3& v, int i, int j, int k, Real a) {
   return a * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
 }
-KOKKOS_INLINE_FUNCTION Real face_flux_z(const Field3& w, int i, int j, int k, Real a) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a) {
   return a * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
 }
 
@@ -50,9 +53,9 @@ struct CellFaceFluxes {
   // the cell's volume change, in net_volume_flux's order of operations
   KOKKOS_INLINE_FUNCTION Real net() const { return xh - xl + yh - yl + zh - zl; }
 };
-KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const Field3& u, const Field3& v,
-                                                       const Field3& w, int i, int j, int k,
-                                                       Real ax, Real ay, Real az) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v, const F3& w, int i,
+                                                       int j, int k, Real ax, Real ay, Real az) {
   return {face_flux_x(u, i, j, k, ax), face_flux_x(u, i + 1, j, k, ax),
           face_flux_y(v, i, j, k, ay), face_flux_y(v, i, j + 1, k, ay),
           face_flux_z(w, i, j, k, az), face_flux_z(w, i, j, k + 1, az)};

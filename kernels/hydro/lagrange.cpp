@@ -1,6 +1,7 @@
 // The Lagrangian phase: EOS, artificial viscosity, and the predictor–corrector step on the
 // staggered mesh. The volume change of a cell and the force on a node use the same face areas,
 // so the work done on the nodes equals the p dV work taken from the cells.
+#include "core/columns.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/profiling.hpp"
@@ -11,22 +12,29 @@ namespace mp::hydro {
 
 namespace {
 
-// The single-material predictor over `box`: each cell's half-step density and energy from the
-// start-of-step volume fluxes of its six faces (computed here from the node velocities, `a*`
-// the half step times a quarter of the face areas: no stored face fluxes and no launch for
-// them), its half-step pressure from `pressure(rho, e, i, j, k)`.
+// The single-material predictor over every cell of `mesh`'s block: each cell's half-step density
+// and energy from the start-of-step volume fluxes of its six faces (computed here from the node
+// velocities, `a*` the half step times a quarter of the face areas: no stored face fluxes and no
+// launch for them), its half-step pressure from `pressure(rho, e, i, j, k)`.
 template <class Pressure>
-void predictor_kernel(const Policy3& box, const Field3& u, const Field3& v, const Field3& w,
-                      Real ax, Real ay, Real az, const Field3& rho, const Field3& e,
-                      const Field3& p, const Field3& q, const Field3& ph, Real vol,
-                      const Pressure& pressure) {
-  Kokkos::parallel_for(
-      "lagrange::predictor", box, KOKKOS_LAMBDA(int i, int j, int k) {
-        const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
-        const Real mass = rho(i, j, k) * vol;
-        const Real v_half = vol + dv;
-        const Real e_half = pdv_energy(e(i, j, k), p(i, j, k), q(i, j, k), dv, mass);
-        ph(i, j, k) = pressure(mass / v_half, e_half, i, j, k);
+void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const Field3& w, Real ax,
+                      Real ay, Real az, const Field3& rho, const Field3& e, const Field3& p,
+                      const Field3& q, const Field3& ph, Real vol, const Pressure& pressure) {
+  // (k-columns, core/columns.hpp)
+  int lo[3], hi[3];
+  mesh.box(Centering::Cell, Region::All, lo, hi);
+  for_columns(
+      "lagrange::predictor", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto U = local(u), V = local(v), W = local(w), ra = local(rho), ea = local(e),
+                   pa = local(p), qa = local(q), out = local(ph);
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) {
+          const Real dv = cell_face_fluxes(U, V, W, i, j, k, ax, ay, az).net();
+          const Real mass = ra(i, j, k) * vol;
+          const Real v_half = vol + dv;
+          const Real e_half = pdv_energy(ea(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
+          out(i, j, k) = pressure(mass / v_half, e_half, i, j, k);
+        }
       });
 }
 
@@ -298,13 +306,13 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const Real e0 = burn_->e0();
     auto f = burn_->fraction();
     predictor_kernel(
-        mesh_.cells(Region::All), u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
+        mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
           return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         });
   } else {
     predictor_kernel(
-        mesh_.cells(Region::All), u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
+        mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int, int, int) { return eos.pressure_cut(r, en); });
   }
   if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
@@ -320,35 +328,58 @@ Health Hydro::lagrange(Real dt, long cycle) {
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
   const Real axf = g.dx[1] * g.dx[2] * Real(0.25), ayf = g.dx[0] * g.dx[2] * Real(0.25),
              azf = g.dx[0] * g.dx[1] * Real(0.25);
-  Kokkos::parallel_for(
-      "lagrange::acceleration", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        Real fxs = 0, fys = 0, fzs = 0, mass = 0;
-        for (int c = 0; c < 2; ++c)
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a) {
-              const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
-              const Real pt = ph(ci, cj, ck) + q(ci, cj, ck);
-              // a cell below the node along an axis pushes it up, a cell above pushes it down
-              fxs += (a == 0 ? pt : -pt);
-              fys += (b == 0 ? pt : -pt);
-              fzs += (c == 0 ? pt : -pt);
-              mass += rho(ci, cj, ck);
-            }
-        mass *= Real(0.125) * vol;
-        Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
-        if (has_strength) {
-          force_x += fsx(i, j, k);
-          force_y += fsy(i, j, k);
-          force_z += fsz(i, j, k);
+  // (k-columns, core/columns.hpp)
+  auto node_update = [=] KOKKOS_FUNCTION(const auto& pha, const auto& qa, const auto& ra,
+                                         const auto& U, const auto& V, const auto& W,
+                                         const auto& Ub, const auto& Vb, const auto& Wb,
+                                         Real force_sx, Real force_sy, Real force_sz, int i, int j,
+                                         int k) {
+    Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+    for (int c = 0; c < 2; ++c)
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
+          const Real pt = pha(ci, cj, ck) + qa(ci, cj, ck);
+          // a cell below the node along an axis pushes it up, a cell above pushes it down
+          fxs += (a == 0 ? pt : -pt);
+          fys += (b == 0 ? pt : -pt);
+          fzs += (c == 0 ? pt : -pt);
+          mass += ra(ci, cj, ck);
         }
-        const Real ax = force_x / mass, ay = force_y / mass, az = force_z / mass;
-        ub(i, j, k) = u(i, j, k) + Real(0.5) * dt * ax;
-        vb(i, j, k) = v(i, j, k) + Real(0.5) * dt * ay;
-        wb(i, j, k) = w(i, j, k) + Real(0.5) * dt * az;
-        u(i, j, k) += dt * ax;
-        v(i, j, k) += dt * ay;
-        w(i, j, k) += dt * az;
-      });
+    mass *= Real(0.125) * vol;
+    Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
+    if (has_strength) {
+      force_x += force_sx;
+      force_y += force_sy;
+      force_z += force_sz;
+    }
+    const Real ax = force_x / mass, ay = force_y / mass, az = force_z / mass;
+    Ub(i, j, k) = U(i, j, k) + Real(0.5) * dt * ax;
+    Vb(i, j, k) = V(i, j, k) + Real(0.5) * dt * ay;
+    Wb(i, j, k) = W(i, j, k) + Real(0.5) * dt * az;
+    U(i, j, k) += dt * ax;
+    V(i, j, k) += dt * ay;
+    W(i, j, k) += dt * az;
+  };
+  if (has_strength) {
+    Kokkos::parallel_for(
+        "lagrange::acceleration", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          node_update(ph, q, rho, u, v, w, ub, vb, wb, fsx(i, j, k), fsy(i, j, k), fsz(i, j, k), i,
+                      j, k);
+        });
+  } else {
+    int lo[3], hi[3];
+    mesh_.box(Centering::Node, Region::Owned, lo, hi);
+    for_columns(
+        "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+          const auto pha = local(ph), qa = local(q), ra = local(rho);
+          const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
+                     Wb = local(wb);
+#pragma GCC ivdep
+          for (int k = k0; k < k1; ++k)
+            node_update(pha, qa, ra, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+        });
+  }
   halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
                   {v, Centering::Node, {1, -1, 1}},
                   {w, Centering::Node, {1, 1, -1}},
@@ -380,24 +411,34 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const RemapStep first = remap_steps(cycle).front();
     const StepWeights sw = first.weights();
     auto pre = s_.pre_vol, post = s_.post_vol;
-    Kokkos::parallel_reduce(
-        "lagrange::corrector", mesh_.cells(Region::All),
-        KOKKOS_LAMBDA(int i, int j, int k, long& n) {
-          const CellFaceFluxes f = cell_face_fluxes(ub, vb, wb, i, j, k, cx, cy, cz);
-          fx(i, j, k) = f.xl;
-          fy(i, j, k) = f.yl;
-          fz(i, j, k) = f.zl;
-          if (i == ex - 1) fx(i + 1, j, k) = f.xh;
-          if (j == ey - 1) fy(i, j + 1, k) = f.yh;
-          if (k == ez - 1) fz(i, j, k + 1) = f.zh;
-          step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
-          const Real dv = f.net();
-          const Real mass = rho(i, j, k) * vol;
-          e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
-          rho(i, j, k) = mass / (vol + dv);
-          if (i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1] && k >= olo[2] && k < ohi[2] &&
-              !(vmin + dv > 0))
-            ++n;
+    int lo[3], hi[3];
+    mesh_.box(Centering::Cell, Region::All, lo, hi);
+    // (k-columns, core/columns.hpp)
+    reduce_columns(
+        "lagrange::corrector", lo, hi,
+        KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
+          const auto U = local(ub), V = local(vb), W = local(wb), X = local(fx), Y = local(fy),
+                     Z = local(fz), p0 = local(pre), p1 = local(post), ra = local(rho),
+                     ea = local(e), pa = local(ph), qa = local(q);
+          const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
+          long bad_here = 0;
+#pragma GCC ivdep
+          for (int k = k0; k < k1; ++k) {
+            const CellFaceFluxes f = cell_face_fluxes(U, V, W, i, j, k, cx, cy, cz);
+            X(i, j, k) = f.xl;
+            Y(i, j, k) = f.yl;
+            Z(i, j, k) = f.zl;
+            if (i == ex - 1) X(i + 1, j, k) = f.xh;
+            if (j == ey - 1) Y(i, j + 1, k) = f.yh;
+            if (k == ez - 1) Z(i, j, k + 1) = f.zh;
+            step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, p0(i, j, k), p1(i, j, k));
+            const Real dv = f.net();
+            const Real mass = ra(i, j, k) * vol;
+            ea(i, j, k) = pdv_energy(ea(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
+            ra(i, j, k) = mass / (vol + dv);
+            bad_here += (col_owned && k >= olo[2] && k < ohi[2] && !(vmin + dv > 0)) ? 1 : 0;
+          }
+          n += bad_here;
         },
         bad);
   }

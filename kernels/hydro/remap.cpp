@@ -501,11 +501,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       hi[a] = r[1];
     }
     int nlo[3], nhi[3];  // the owned nodes
-    for (int a = 0; a < 3; ++a) {
-      const auto r = mesh_.range(Centering::Node, Region::Owned, a);
-      nlo[a] = r[0];
-      nhi[a] = r[1];
-    }
+    mesh_.box(Centering::Node, Region::Owned, nlo, nhi);
     with_axis(d, [&](auto a) {
       momentum_sweep<decltype(a)::value>(lo, hi, nlo, nhi, mf, nm, u, v, w, F, U, V, W, K, ord,
                                          weigh, finish);
@@ -541,11 +537,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       // one 3.4 (a masked store, 2.9); as k-columns, 1.2.
       const StepWeights nw = next->weights();
       int lo[3], hi[3];
-      for (int a = 0; a < 3; ++a) {
-        const auto r = mesh_.range(Centering::Cell, Region::All, a);
-        lo[a] = r[0];
-        hi[a] = r[1];
-      }
+      mesh_.box(Centering::Cell, Region::All, lo, hi);
       for_columns(
           "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
             const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
@@ -564,11 +556,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       volumes_for_ = *next;
     } else {
       int lo[3], hi[3];
-      for (int a = 0; a < 3; ++a) {
-        const auto r = mesh_.range(Centering::Cell, Region::Owned, a);
-        lo[a] = r[0];
-        hi[a] = r[1];
-      }
+      mesh_.box(Centering::Cell, Region::Owned, lo, hi);
       for_columns("remap::ke_fix", lo, hi, fix);
     }
   }

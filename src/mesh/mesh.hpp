@@ -91,6 +91,14 @@ class Mesh {
   Policy3 cells(Region r) const { return policy(Centering::Cell, r); }
   Policy3 nodes(Region r) const { return policy(Centering::Node, r); }
   Policy3 policy(Centering c, Region r) const;
+  // The same index box as bounds [lo, hi) (for core/columns.hpp's for_columns).
+  void box(Centering c, Region r, int lo[3], int hi[3]) const {
+    for (int d = 0; d < 3; ++d) {
+      const auto x = range(c, r, d);
+      lo[d] = x[0];
+      hi[d] = x[1];
+    }
+  }
   // Cells [ng - lo_pad, ng + nl + hi_pad) along every axis, for stencils that reach into ghosts.
   Policy3 cells_padded(int pad) const;
 
