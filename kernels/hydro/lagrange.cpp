@@ -441,10 +441,8 @@ Health Hydro::lagrange(Real dt, long cycle) {
           n += bad_here;
         },
         bad);
-  }
-  if (!mm_) {
     volumes_ready_ = true;
-    volumes_for_ = remap_steps(cycle).front();
+    volumes_for_ = first;
   }
   // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
   if (burn_) burn_->update(rho, double(dt));

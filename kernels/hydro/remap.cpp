@@ -214,6 +214,20 @@ void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const in
       });
 }
 
+// A cell's new density and energy from its mass and energy gains dm, de through the step's
+// faces (pre, post: its volume before and after the step). The volume before the step is read
+// no more in it: the cell's internal energy takes its place, the KE fix's weight
+// (ke_fix_share), and the next step recomputes it.
+KOKKOS_INLINE_FUNCTION void update_cell(Real& rho, Real& e, Real& pre, Real post, Real dm,
+                                        Real de) {
+  const Real m0 = rho * pre;
+  const Real m1 = m0 + dm;
+  const Real e1 = (e * m0 + de) / m1;
+  e = e1;
+  rho = m1 / post;
+  pre = m1 * mmax(e1, Real(0));
+}
+
 // The KE fix of cell k of a column (single-material scenes; item 6 of "One cycle"): the cell's
 // density, energy and volume after the sweep as columns, and its 8 nodes' losses as the node
 // columns (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1.
@@ -366,7 +380,6 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     burn_->remap(axes, c.flux, c.rho, pre, ord);
   }
   auto cell_update = [=] KOKKOS_FUNCTION(int i, int j, int k) {
-    const Real m0 = rho(i, j, k) * pre(i, j, k);
     Real dm = 0, de = 0;
     if (ax > 0) {
       dm += mfx(i, j, k) - mfx(i + 1, j, k);
@@ -380,13 +393,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       dm += mfz(i, j, k) - mfz(i, j, k + 1);
       de += efz(i, j, k) - efz(i, j, k + 1);
     }
-    const Real m1 = m0 + dm;
-    const Real e1 = (e(i, j, k) * m0 + de) / m1;
-    e(i, j, k) = e1;
-    rho(i, j, k) = m1 / post(i, j, k);
-    // the volume before the step is read no more in it: the cell's internal energy takes its
-    // place, the KE fix's weight (ke_fix_share), and the next step recomputes it
-    pre(i, j, k) = m1 * mmax(e1, Real(0));
+    update_cell(rho(i, j, k), e(i, j, k), pre(i, j, k), post(i, j, k), dm, de);
   };
   if (mm_) {
     for (int d = 0; d < 3; ++d)
@@ -406,7 +413,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     if (strength_ || burn_) mm_clear_absent();
   } else {
     // (one axis, its flux faces' offsets constants: a column loop GCC vectorizes; the same
-    // operations as cell_update's, bit for bit: 0 + x is x for the one axis's terms)
+    // update_cell as the unsplit step's, bit for bit: 0 + x is x for the one axis's terms)
     const int lo[3] = {Mesh::ng - 1, Mesh::ng - 1, Mesh::ng - 1};
     const int hi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
                        Mesh::ng + mesh_.owned_cells(2) + 1};
@@ -426,19 +433,9 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
                         const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy),
                                    el = column(ef, i, j), eh = column(ef, i + sx, j + sy);
 #pragma GCC ivdep
-                        for (int k = k0; k < k1; ++k) {
-                          const Real m0 = r[k] * p0[k];
-                          const Real dm = Real(0) + (ml[k] - mh[k + sz]);
-                          const Real de = Real(0) + (el[k] - eh[k + sz]);
-                          const Real m1 = m0 + dm;
-                          const Real e1 = (en[k] * m0 + de) / m1;
-                          en[k] = e1;
-                          r[k] = m1 / p1[k];
-                          // the volume before the step is read no more in it: the cell's internal
-                          // energy takes its place, the KE fix's weight (ke_fix_share), and the
-                          // next step recomputes it
-                          p0[k] = m1 * mmax(e1, Real(0));
-                        }
+                        for (int k = k0; k < k1; ++k)
+                          update_cell(r[k], en[k], p0[k], p1[k], Real(0) + (ml[k] - mh[k + sz]),
+                                      Real(0) + (el[k] - eh[k + sz]));
                       });
                 });
     } else {
