@@ -122,37 +122,77 @@ struct RemapSource {
     if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
       return false;
     } else {
-      const int m = dev.mat(i, j, k);
-      if (m < 0) return false;
-      const int sx = d == 0, sy = d == 1, sz = d == 2;
-      const int fi = i + sx, fj = j + sy, fk = k + sz;
-      const Real flo = vf(i, j, k), fhi = vf(fi, fj, fk);
-      if (flo > 0 && dev.mat(i - sx, j - sy, k - sz) != m) return false;
-      if (!(fhi > 0) && dev.mat(fi, fj, fk) != m) return false;
-      Real V = 0, M = 0, E = 0;
-      V += Real(1) * vf(i, j, k);
-      M += Real(1) * mf(i, j, k);
-      E += Real(1) * ef(i, j, k);
-      V += Real(-1) * vf(fi, fj, fk);
-      M += Real(-1) * mf(fi, fj, fk);
-      E += Real(-1) * ef(fi, fj, fk);
-      const Real p0 = pre(i, j, k), p1 = post(i, j, k);
-      const Real a = 1, v0 = a * p0;
-      const Real m0 = v0 * rho(i, j, k);
-      const Real vol = v0 + V;
-      Real mass = m0 + M, ener = e(i, j, k) * m0 + E;
-      if (!(vol > 0)) return false;
-      if (nmat > 1) {  // content() adds the (empty) others' zeros to the largest material
-        mass += Real(0);
-        ener += Real(0);
-      }
-      const Real vsum = Real(0) + vol;
-      const Real af = vol / vsum;
-      r_out = mass / (af * p1);
-      e_out = ener / mass;
-      id = m;
-      return true;
+      id = dev.mat(i, j, k);
+      if (nmat == 1)
+        return pure_update<false>(dev.mat, vf, mf, ef, pre, post, rho, e, i, j, k, r_out, e_out);
+      return pure_update<true>(dev.mat, vf, mf, ef, pre, post, rho, e, i, j, k, r_out, e_out);
     }
+  }
+  // The same a k-column at a time (MaterialState::assign's pure_columns; dev is the pool
+  // assign starts from). Every operand is loaded and the tests are selects, so GCC vectorizes
+  // the loop; a cell that is not written keeps its values (stored back unchanged).
+  static constexpr bool pure_columns = true;
+  template <class Stamp>
+  KOKKOS_INLINE_FUNCTION void pure_column(int i, int j, int k0, int k1, const Field3& crho,
+                                          const Field3& ce, const Stamp& stamp) const {
+    if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
+      for (int k = k0; k < k1; ++k) stamp(i, j, k) = 0;
+    } else {
+      const auto mt = local(dev.mat), st = local(stamp);
+      const auto v = local(vf), m = local(mf), en = local(ef), p0 = local(pre), p1 = local(post),
+                 r = local(rho), es = local(e), cr = local(crho), cen = local(ce);
+      auto loop = [&](auto several) {
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) {
+          Real ro, eo;
+          const bool ok =
+              pure_update<decltype(several)::value>(mt, v, m, en, p0, p1, r, es, i, j, k, ro, eo);
+          const Real r0 = cr(i, j, k), e0 = cen(i, j, k);  // (loaded unconditionally)
+          cr(i, j, k) = select_bits(ok, ro, r0);
+          cen(i, j, k) = select_bits(ok, eo, e0);
+          st(i, j, k) = ok ? 1 : 0;
+        }
+      };
+      if (nmat > 1)
+        loop(std::true_type{});
+      else
+        loop(std::false_type{});
+    }
+  }
+  // pure()'s arithmetic on any accessors (views, or core/columns.hpp's locals): whether the
+  // cell stays its pure material, and its density and energy if so (computed either way)
+  template <bool several, class I, class F>
+  KOKKOS_INLINE_FUNCTION bool pure_update(const I& mt, const F& vf_, const F& mf_, const F& ef_,
+                                          const F& pre_, const F& post_, const F& rho_, const F& e_,
+                                          int i, int j, int k, Real& r_out, Real& e_out) const {
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
+    const int fi = i + sx, fj = j + sy, fk = k + sz;
+    const int m = mt(i, j, k);
+    const Real flo = vf_(i, j, k), fhi = vf_(fi, fj, fk);
+    // (bitwise & of the tests: no branch in the loop)
+    const bool same = (m >= 0) & (!(flo > 0) | (mt(i - sx, j - sy, k - sz) == m)) &
+                      ((fhi > 0) | (mt(fi, fj, fk) == m));
+    Real V = 0, M = 0, E = 0;
+    V += Real(1) * flo;
+    M += Real(1) * mf_(i, j, k);
+    E += Real(1) * ef_(i, j, k);
+    V += Real(-1) * fhi;
+    M += Real(-1) * mf_(fi, fj, fk);
+    E += Real(-1) * ef_(fi, fj, fk);
+    const Real p0 = pre_(i, j, k), p1 = post_(i, j, k);
+    const Real a = 1, v0 = a * p0;
+    const Real m0 = v0 * rho_(i, j, k);
+    const Real vol = v0 + V;
+    Real mass = m0 + M, ener = e_(i, j, k) * m0 + E;
+    if (several) {  // content() adds the (empty) others' zeros to the largest material
+      mass += Real(0);
+      ener += Real(0);
+    }
+    const Real vsum = Real(0) + vol;
+    const Real af = vol / vsum;
+    r_out = mass / (af * p1);
+    e_out = ener / mass;
+    return same & (vol > 0);
   }
 
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
@@ -336,6 +376,48 @@ struct FaceFluxes {
       for (int m = 0; m < nmat; ++m)
         if ((cmask[c] >> m) & 1u) sum += M[m];
       cflux[c](i, j, k) = sum;
+    }
+  }
+
+  // The compact layout a k-column at a time (issue #15; core/columns.hpp): every face of the
+  // column as if its donor were pure (the fast path above, its stencil selected from the four
+  // cells along d as remap::cell_flux does), then the faces whose donor is mixed again through
+  // operator() (which overwrites what the first loop wrote for them). GCC leaves the first loop
+  // scalar (as remap::cell_flux's), but plain column offsets replace the MDRange's per-point
+  // view indexing.
+  KOKKOS_INLINE_FUNCTION void column(int i, int j, int k0, int k1) const {
+    if constexpr (std::is_same_v<Dev, mat::CompactDev>) {
+      constexpr int sx = d == 0, sy = d == 1, sz = d == 2;
+      const auto mt = local(dev.mat), v = local(vf), pa = local(pre), ra = local(rho),
+                 ea = local(e), mfa = local(mf), efa = local(ef);
+#pragma GCC ivdep
+      for (int k = k0; k < k1; ++k) {
+        const Real f = v(i, j, k);
+        const bool pos = f > 0;
+        auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
+        const int nm2 = at(mt, -2), nm1 = at(mt, -1), n0 = at(mt, 0), n1 = at(mt, 1);
+        // (pure_of of the up- and downwind cells, for either wind; the donor's own test is the
+        // last loop's)
+        const bool smooth = pos ? (nm2 == nm1) & (n0 == nm1) : (n1 == n0) & (nm1 == n0);
+        Real Mm, Em;
+        column_face_flux(f, at, ra, ea, pa, smooth ? order : 1, Mm, Em);
+        mfa(i, j, k) = Mm;
+        efa(i, j, k) = Em;
+      }
+      for (int c = 0; c < nc; ++c) {
+        const auto cf = local(cflux[c]);
+        const unsigned mask = cmask[c];
+        for (int k = k0; k < k1; ++k) {
+          const int md = v(i, j, k) > 0 ? mt(i - sx, j - sy, k - sz) : mt(i, j, k);
+          cf(i, j, k) = md >= 0 && ((mask >> md) & 1u) ? Real(0) + mfa(i, j, k) : Real(0);
+        }
+      }
+      for (int k = k0; k < k1; ++k) {
+        const int md = v(i, j, k) > 0 ? mt(i - sx, j - sy, k - sz) : mt(i, j, k);
+        if (md < 0) (*this)(i, j, k);
+      }
+    } else {
+      for (int k = k0; k < k1; ++k) (*this)(i, j, k);
     }
   }
 };
@@ -587,7 +669,12 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
   with_axis(d, [&](auto a) {
     FaceFluxes<Dev, decltype(a)::value> ff{};
     fill(ff);
-    Kokkos::parallel_for("remap::material_flux", faces, ff);
+    if constexpr (std::is_same_v<Dev, mat::CompactDev>)
+      for_columns(
+          "remap::material_flux", lo, hi,
+          KOKKOS_LAMBDA(int i, int j, int k0, int k1) { ff.column(i, j, k0, k1); });
+    else
+      Kokkos::parallel_for("remap::material_flux", faces, ff);
   });
 }
 

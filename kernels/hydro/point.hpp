@@ -68,4 +68,20 @@ KOKKOS_INLINE_FUNCTION void donor_flux(Real f, Real pre, Real rho_up, Real rho_d
   energy = mass * face_value(e_up, e_d, e_dn, sm, order);
 }
 
+// donor_flux of face k of a k-column (remap::cell_flux, the compact layout's material faces):
+// at(a, o) reads field a o cells along the axis from the face's high cell (face k lies between
+// cells -1 and 0). The four cells around the face are loaded whatever the wind and the donor's
+// stencil selected from them (fixed offsets: no branch on the wind).
+template <class At, class A>
+KOKKOS_INLINE_FUNCTION void column_face_flux(Real f, const At& at, const A& rho, const A& e,
+                                             const A& pre, int order, Real& mass, Real& energy) {
+  // the donor is the cell the flow leaves (-1 when f > 0, up -2, down 0; else 0, up 1, down -1)
+  const bool pos = f > 0;
+  const Real rm2 = at(rho, -2), rm1 = at(rho, -1), r0 = at(rho, 0), r1 = at(rho, 1);
+  const Real em2 = at(e, -2), em1 = at(e, -1), e0 = at(e, 0), e1 = at(e, 1);
+  const Real pm1 = at(pre, -1), p0 = at(pre, 0);  // (both loaded: no branch)
+  donor_flux(f, pos ? pm1 : p0, pos ? rm2 : r1, pos ? rm1 : r0, pos ? r0 : rm1, pos ? em2 : e1,
+             pos ? em1 : e0, pos ? e0 : em1, order, mass, energy);
+}
+
 }  // namespace mp::hydro

@@ -147,16 +147,9 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
 #pragma GCC ivdep
         for (int k = k0; k < k1; ++k) {
           const Real f = vfa(i, j, k);
-          // face i lies between cells i-1 and i; the donor is the cell the flow leaves (i - 1
-          // when f > 0, up i - 2, down i; else i, up i + 1, down i - 1)
-          const bool pos = f > 0;
           auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
-          const Real rm2 = at(ra, -2), rm1 = at(ra, -1), r0 = at(ra, 0), r1 = at(ra, 1);
-          const Real em2 = at(ea, -2), em1 = at(ea, -1), e0 = at(ea, 0), e1 = at(ea, 1);
-          const Real pd = pos ? at(pa, -1) : at(pa, 0);
           Real m, en;
-          donor_flux(f, pd, pos ? rm2 : r1, pos ? rm1 : r0, pos ? r0 : rm1, pos ? em2 : e1,
-                     pos ? em1 : e0, pos ? e0 : em1, ord, m, en);
+          column_face_flux(f, at, ra, ea, pa, ord, m, en);
           mfa(i, j, k) = m;
           efa(i, j, k) = en;
         }

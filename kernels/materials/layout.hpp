@@ -24,6 +24,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/columns.hpp"
 #include "core/types.hpp"
 #include "eos/eos.hpp"
 #include "mesh/mesh.hpp"
@@ -378,6 +379,19 @@ template <class S>
 struct HasPure<S, std::void_t<decltype(S::has_pure)>> : std::integral_constant<bool, S::has_pure> {
 };
 
+// A source whose changed cells are the box [lo, hi) (int lo[3], hi[3] members) may also do the
+// shortcut a column at a time, where a loop over k vectorizes (core/columns.hpp):
+//   static constexpr bool pure_columns = true;
+//   void pure_column(i, j, k0, k1, crho, ce, stamp) const;
+// For each k0 <= k < k1: where pure(i, j, k, ...) would hold with the cell's stored material
+// (the source reads the current pool), writes its values to crho, ce and stamps 1; elsewhere
+// stamps 0 and leaves crho, ce as they were (the general path then takes the cell).
+template <class S, class = void>
+struct PureColumns : std::false_type {};
+template <class S>
+struct PureColumns<S, std::void_t<decltype(S::pure_columns)>>
+    : std::integral_constant<bool, S::pure_columns> {};
+
 // A source whose changed cells are all ghosts (the halo) declares
 //   static constexpr bool ghosts_only = true;
 // The in-place pass then runs over the ghost shell of the block (the ng layers on each side of
@@ -478,18 +492,8 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   auto stamp = stamp_;
   if constexpr (InPlace<Source>::value) {
     long moved = 0;
-    auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-      if (!src.changed(i, j, k)) return;
-      if constexpr (HasPure<Source>::value) {
-        int pid = -1;
-        Real pr = 0, pe = 0;
-        if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) && pid == old.mat(i, j, k)) {
-          crho(i, j, k) = pr;  // (cell_average of one material: its own values)
-          ce(i, j, k) = pe;
-          stamp(i, j, k) = 1;
-          return;
-        }
-      }
+    // a changed cell that the shortcut below did not write
+    auto general = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
       Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
       int id = 0;
       const int n = new_content(src, i, j, k, nmat, a, r, en, id);
@@ -523,8 +527,47 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
       stamp(i, j, k) = 1;
     };
-    if constexpr (GhostsOnly<Source>::value) {
+    auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      if (!src.changed(i, j, k)) return;
+      if constexpr (HasPure<Source>::value) {
+        int pid = -1;
+        Real pr = 0, pe = 0;
+        if (old.mat(i, j, k) >= 0 && src.pure(i, j, k, pid, pr, pe) && pid == old.mat(i, j, k)) {
+          crho(i, j, k) = pr;  // (cell_average of one material: its own values)
+          ce(i, j, k) = pe;
+          stamp(i, j, k) = 1;
+          return;
+        }
+      }
+      general(i, j, k, acc);
+    };
+    if constexpr (PureColumns<Source>::value) {
+      // k-columns of the changed box (core/columns.hpp): the source's vector pass writes the
+      // cells that stay the same pure material and stamps the column (1 written, 0 not), then
+      // the general path takes the others, one by one
+      reduce_columns(
+          name + "::in_place", src.lo, src.hi,
+          KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& acc) {
+            src.pure_column(i, j, k0, k1, crho, ce, stamp);
+            for (int k = k0; k < k1; ++k)
+              if (!stamp(i, j, k)) general(i, j, k, acc);
+          },
+          moved);
+    } else if constexpr (GhostsOnly<Source>::value) {
       const int ex = ex_, ng = Mesh::ng;
+#if !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) && !defined(KOKKOS_ENABLE_SYCL)
+      // host backends: the shell as k-columns (a column in a ghost slab of x or y whole, any
+      // other its ng cells at each end of k), without shell_cell's divisions per cell
+      const int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
+      reduce_columns(
+          name + "::in_place", lo, hi,
+          KOKKOS_LAMBDA(int i, int j, int, int, long& acc) {
+            const bool slab = i < ng || i >= ex - ng || j < ng || j >= ey - ng;
+            for (int k = 0; k < ez; k = (slab || k != ng - 1) ? k + 1 : ez - ng)
+              in_place(i, j, k, acc);
+          },
+          moved);
+#else
       Kokkos::parallel_reduce(
           name + "::in_place",
           Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, shell_cells(ex, ey, ez, ng)),
@@ -534,6 +577,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
             in_place(i, j, k, acc);
           },
           moved);
+#endif
     } else {
       Kokkos::parallel_reduce(name + "::in_place", Policy3({0, 0, 0}, {ex_, ey_, ez_}), in_place,
                               moved);

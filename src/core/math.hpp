@@ -1,6 +1,10 @@
 // Device-callable math that compiles against Kokkos 3.4 (Kokkos::Experimental::) and 4.x
 // (Kokkos::).
 #pragma once
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
 #include "core/types.hpp"
 
 namespace mp {
@@ -22,6 +26,20 @@ KOKKOS_INLINE_FUNCTION Real mmin(Real a, Real b) {
 }
 KOKKOS_INLINE_FUNCTION Real mmax(Real a, Real b) {
   return a > b ? a : b;
+}
+// c ? a : b as integer operations on the bits (exactly a or b): a select GCC's vectorizer
+// takes where a floating-point one, fed by integer and floating-point tests together, left
+// the loop with a branch (issue #15, the compact layout's column loops).
+KOKKOS_INLINE_FUNCTION Real select_bits(bool c, Real a, Real b) {
+  using U = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+  U ua, ub;
+  std::memcpy(&ua, &a, sizeof(Real));
+  std::memcpy(&ub, &b, sizeof(Real));
+  const U m = U(0) - U(c);
+  const U r = (ua & m) | (ub & ~m);
+  Real out;
+  std::memcpy(&out, &r, sizeof(Real));
+  return out;
 }
 KOKKOS_INLINE_FUNCTION bool misfinite(Real x) {
   return MP_KOKKOS_MATH::isfinite(x);
