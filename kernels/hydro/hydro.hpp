@@ -74,10 +74,11 @@ KOKKOS_INLINE_FUNCTION void step_volumes(Real vol, Real dvx, Real dvy, Real dvz,
   post = v0 - (s.ax * dvx + s.ay * dvy + s.az * dvz);
 }
 // The same for cell (i, j, k) from the stored face volume fluxes, into pre and post.
-KOKKOS_INLINE_FUNCTION void stored_step_volumes(const Field3& fx, const Field3& fy,
-                                                const Field3& fz, int i, int j, int k, Real vol,
-                                                const StepWeights& s, const Field3& pre,
-                                                const Field3& post) {
+// (F: a view or a core/columns.hpp local accessor)
+template <class F>
+KOKKOS_INLINE_FUNCTION void stored_step_volumes(const F& fx, const F& fy, const F& fz, int i, int j,
+                                                int k, Real vol, const StepWeights& s, const F& pre,
+                                                const F& post) {
   step_volumes(vol, fx(i + 1, j, k) - fx(i, j, k), fy(i, j + 1, k) - fy(i, j, k),
                fz(i, j, k + 1) - fz(i, j, k), s, pre(i, j, k), post(i, j, k));
 }
