@@ -297,7 +297,8 @@ class Hydro {
   // the one unsplit step.
   std::vector<RemapStep> remap_steps(long cycle) const;
 
- private:
+  // Kernel launchers (public: nvcc requires the function enclosing an extended
+  // __host__ __device__ lambda to be public).
   void exchange_cells();
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   // `next`: the step after this one (nullptr for the last), whose cell volumes the KE fix's
@@ -333,6 +334,7 @@ class Hydro {
   };
   Carrier carrier(int slot) const;
 
+ private:
   const Mesh& mesh_;
   Halo& halo_;
   Options opt_;

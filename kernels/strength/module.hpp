@@ -165,6 +165,10 @@ class Strength {
  private:
   void allocate();
   StressSet new_set(int material, const std::string& suffix) const;
+
+ public:
+  // Kernel launchers (public: nvcc requires the function enclosing an extended
+  // __host__ __device__ lambda to be public).
   void mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const;
   void mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt);
   void mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb, Real dt);
@@ -179,6 +183,7 @@ class Strength {
   void gather(const mat::CompactDev& dev, const std::vector<Target>& targets, Where w) const;
   void scatter(const std::vector<Target>& targets, Where w) const;
 
+ private:
   const Mesh& mesh_;
   FlowStress model_;
   Real rho0_;
