@@ -283,88 +283,94 @@ void MaterialState::exchange() {
       send_[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, "matter::send"), largest);
   }
   if (pack_count_.extent(0) == 0) pack_count_ = decltype(pack_count_)("matter::pack_count", 6);
-  auto run = [&](const auto& dev) {
-    using Dev = std::decay_t<decltype(dev)>;
-    HaloSource<Dev> src{dev, rho_, e_, ng, nmat, 0, {ext[0], ext[1], ext[2]}, {}, {}, {}};
-    for (int d = 0; d < 3; ++d) src.nl[d] = mesh_.owned_cells(d);
-    for (int d = 0; d < 3; ++d) {
-      const int nl = src.nl[d];
-      bool any = false;
-      long sent[2] = {0, 0};
-      for (int s = 0; s < 2; ++s) {
-        if (mesh_.physical_boundary(d, s)) {
-          src.mode[d][s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
-          continue;
-        }
-        if (mesh_.neighbor(d, s) == mesh_.rank()) {  // periodic, held by this rank alone
-          src.mode[d][s] = 3;
-          continue;
-        }
-        any = true;
-        src.mode[d][s] = 0;
-        // pack the ng owned layers next to face s, as they stand after the sweeps before d:
-        // heads, and the records of the cells that are not pure where an atomic counter puts
-        // them (their order varies from run to run; what each head points to does not)
-        const int first = s == 0 ? ng : nl;
-        int n[3] = {ext[0], ext[1], ext[2]};
-        n[d] = ng;
-        const long ncell = long(n[0]) * n[1] * n[2];
-        auto buf = send_[s];
-        // the counter runs on from exchange to exchange (resetting it would cost a launch):
-        // this pack's records start where the last one on this sweep and side ended
-        auto counter = Kokkos::subview(pack_count_, 2 * d + s);
-        const long base = pack_total_[2 * d + s];
-        const HaloSource<Dev> before = src;  // done == d
-        Kokkos::parallel_for(
-            "matter::pack", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
-            KOKKOS_LAMBDA(long c) {
-              int x[3] = {int(c / (long(n[1]) * n[2])), int((c / n[2]) % n[1]), int(c % n[2])};
-              x[d] += first;
-              int id = 0;
-              Real pr = 0, pe = 0;
-              if (before.pure(x[0], x[1], x[2], id, pr, pe)) {
-                buf(c * 3) = -Real(id + 1);
-                buf(c * 3 + 1) = pr;
-                buf(c * 3 + 2) = pe;
-                return;
-              }
-              Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-              const int cnt = new_content(before, x[0], x[1], x[2], nmat, a, r, en, id);
-              const long at = Kokkos::atomic_fetch_add(&counter(), long(3 * cnt)) - base;
-              long o = 3 * ncell + at;
-              int mask = 0;
-              for (int m = 0; m < nmat; ++m) {
-                if (!(a[m] > 0)) continue;
-                mask |= 1 << m;
-                buf(o) = a[m];
-                buf(o + 1) = r[m];
-                buf(o + 2) = en[m];
-                o += 3;
-              }
-              buf(c * 3) = Real(mask);
-              buf(c * 3 + 1) = Real(at / HaloSource<Dev>::kSplit);
-              buf(c * 3 + 2) = Real(at % HaloSource<Dev>::kSplit);
-            });
-        long total = 0;
-        Kokkos::deep_copy(total, counter);
-        const long records = total - base;
-        pack_total_[2 * d + s] = total;
-        sent[s] = 3 * ncell + records;
-      }
-      if (any) {
-        exchange_sized(mesh_, d, send_, sent, recv_[d], 100, "matter::recv");
-        for (int s = 0; s < 2; ++s) src.recv[d][s] = recv_[d][s];
-      }
-      src.done = d + 1;
-    }
-    // one update of every ghost cell (one pool rebuild in the compact layout)
-    assign("matter::halo", src);
-  };
   if (kind_ == LayoutKind::Dense)
-    run(dense_);
+    exchange_layout(dense_);
   else
-    run(compact_);
+    exchange_layout(compact_);
   Kokkos::Profiling::popRegion();
+}
+
+// (a member function template, not a generic lambda: nvcc allows no extended lambda inside a
+// generic lambda)
+template <class Dev>
+void MaterialState::exchange_layout(const Dev& dev) {
+  const int ng = Mesh::ng;
+  const int nmat = nmat_;
+  const int ext[3] = {ex_, ey_, ez_};
+  HaloSource<Dev> src{dev, rho_, e_, ng, nmat, 0, {ext[0], ext[1], ext[2]}, {}, {}, {}};
+  for (int d = 0; d < 3; ++d) src.nl[d] = mesh_.owned_cells(d);
+  for (int d = 0; d < 3; ++d) {
+    const int nl = src.nl[d];
+    bool any = false;
+    long sent[2] = {0, 0};
+    for (int s = 0; s < 2; ++s) {
+      if (mesh_.physical_boundary(d, s)) {
+        src.mode[d][s] = mesh_.boundary(d, s) == BoundaryKind::Reflective ? 1 : 2;
+        continue;
+      }
+      if (mesh_.neighbor(d, s) == mesh_.rank()) {  // periodic, held by this rank alone
+        src.mode[d][s] = 3;
+        continue;
+      }
+      any = true;
+      src.mode[d][s] = 0;
+      // pack the ng owned layers next to face s, as they stand after the sweeps before d:
+      // heads, and the records of the cells that are not pure where an atomic counter puts
+      // them (their order varies from run to run; what each head points to does not)
+      const int first = s == 0 ? ng : nl;
+      int n[3] = {ext[0], ext[1], ext[2]};
+      n[d] = ng;
+      const long ncell = long(n[0]) * n[1] * n[2];
+      auto buf = send_[s];
+      // the counter runs on from exchange to exchange (resetting it would cost a launch):
+      // this pack's records start where the last one on this sweep and side ended
+      auto counter = Kokkos::subview(pack_count_, 2 * d + s);
+      const long base = pack_total_[2 * d + s];
+      const HaloSource<Dev> before = src;  // done == d
+      Kokkos::parallel_for(
+          "matter::pack", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
+          KOKKOS_LAMBDA(long c) {
+            int x[3] = {int(c / (long(n[1]) * n[2])), int((c / n[2]) % n[1]), int(c % n[2])};
+            x[d] += first;
+            int id = 0;
+            Real pr = 0, pe = 0;
+            if (before.pure(x[0], x[1], x[2], id, pr, pe)) {
+              buf(c * 3) = -Real(id + 1);
+              buf(c * 3 + 1) = pr;
+              buf(c * 3 + 2) = pe;
+              return;
+            }
+            Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+            const int cnt = new_content(before, x[0], x[1], x[2], nmat, a, r, en, id);
+            const long at = Kokkos::atomic_fetch_add(&counter(), long(3 * cnt)) - base;
+            long o = 3 * ncell + at;
+            int mask = 0;
+            for (int m = 0; m < nmat; ++m) {
+              if (!(a[m] > 0)) continue;
+              mask |= 1 << m;
+              buf(o) = a[m];
+              buf(o + 1) = r[m];
+              buf(o + 2) = en[m];
+              o += 3;
+            }
+            buf(c * 3) = Real(mask);
+            buf(c * 3 + 1) = Real(at / HaloSource<Dev>::kSplit);
+            buf(c * 3 + 2) = Real(at % HaloSource<Dev>::kSplit);
+          });
+      long total = 0;
+      Kokkos::deep_copy(total, counter);
+      const long records = total - base;
+      pack_total_[2 * d + s] = total;
+      sent[s] = 3 * ncell + records;
+    }
+    if (any) {
+      exchange_sized(mesh_, d, send_, sent, recv_[d], 100, "matter::recv");
+      for (int s = 0; s < 2; ++s) src.recv[d][s] = recv_[d][s];
+    }
+    src.done = d + 1;
+  }
+  // one update of every ghost cell (one pool rebuild in the compact layout)
+  assign("matter::halo", src);
 }
 
 std::vector<double> MaterialState::material_masses() const {

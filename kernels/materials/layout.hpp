@@ -242,6 +242,9 @@ class MaterialState {
   // Fills the ghost cells' material content from the neighbours and the boundary conditions
   // (axis by axis, like the field halo; messages carry nmat x (alpha, rho, e) per cell).
   void exchange();
+  // exchange() for one layout (public: it launches kernels, see Floors)
+  template <class Dev>
+  void exchange_layout(const Dev& dev);
 
   // sum alpha_m rho_m over the materials m whose bit is set in `mask`, on every cell (ghosts
   // included): the density of a module's carrier materials (kernels/hydro/hydro.hpp).
@@ -300,9 +303,16 @@ class MaterialState {
   Kokkos::View<long*, MemSpace> pack_count_;  // record values packed, per sweep and side,
   long pack_total_[6] = {};                   // all exchanges so far (and its host copy)
   int ex_, ey_, ez_;
+
+ public:
+  // (public: a kernel captures it, and nvcc allows no private type in an extended lambda's
+  // captures)
   struct Floors {
     Real e[kMaxMaterials] = {};
-  } floors_;
+  };
+
+ private:
+  Floors floors_;
 };
 
 // ------------------------------------------------------------------------------------------
@@ -528,6 +538,8 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       stamp(i, j, k) = 1;
     };
     auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      // (captured here: nvcc allows an extended lambda no first capture in an if constexpr)
+      (void)old, (void)crho, (void)ce, (void)stamp;
       if (!src.changed(i, j, k)) return;
       if constexpr (HasPure<Source>::value) {
         int pid = -1;
@@ -619,8 +631,11 @@ void MaterialState::assign(const std::string& name, const Source& src) {
   Kokkos::parallel_scan(
       name + "::scan", Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<long>>(0, ncell),
       KOKKOS_LAMBDA(long lin, long long& acc, bool final) {
+        // (captured here: nvcc allows an extended lambda no first capture in an if constexpr)
+        // (and `linear` spelled out: nvcc takes a constexpr local in it for a capture)
+        (void)nw, (void)ey, (void)ez;
         int *pn, *pf, *pm;
-        if constexpr (linear) {
+        if constexpr (std::is_same<IntField3::array_layout, Kokkos::LayoutRight>::value) {
           pn = nw.nm.data() + lin;
           pf = nw.first.data() + lin;
           pm = nw.mat.data() + lin;
