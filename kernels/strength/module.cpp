@@ -479,6 +479,7 @@ void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, R
     mm_->for_cells(
         "strength::predictor", {ng - 1, ng - 1, ng - 1}, {end[0] + 1, end[1] + 1, end[2] + 1},
         KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+          (void)st;  // (captured here: nvcc allows no first capture in an if constexpr)
           const int slot = find_material(cell, mid);
           if (slot < 0) {
             if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
@@ -518,6 +519,7 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
     mm_->for_cells(
         "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
         KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
+          (void)st;  // (captured here: nvcc allows no first capture in an if constexpr)
           const int slot = find_material(cell, mid);
           if (slot < 0) {
             if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
