@@ -38,6 +38,46 @@ void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const 
       });
 }
 
+// A node's acceleration and its start- and end-of-step velocities (the point function of
+// Hydro::lagrange's acceleration launches; a functor, not a generic lambda: nvcc allows no
+// generic extended lambda). pha, qa, ra: p at the half step, q and rho, as views or local().
+struct NodeUpdate {
+  Real vol, axf, ayf, azf, dt;
+  bool has_strength;
+  template <class P, class Q, class R, class F, class G>
+  KOKKOS_INLINE_FUNCTION void operator()(const P& pha, const Q& qa, const R& ra, const F& U,
+                                         const F& V, const F& W, const G& Ub, const G& Vb,
+                                         const G& Wb, Real force_sx, Real force_sy, Real force_sz,
+                                         int i, int j, int k) const {
+    Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+    for (int c = 0; c < 2; ++c)
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
+          const Real pt = pha(ci, cj, ck) + qa(ci, cj, ck);
+          // a cell below the node along an axis pushes it up, a cell above pushes it down
+          fxs += (a == 0 ? pt : -pt);
+          fys += (b == 0 ? pt : -pt);
+          fzs += (c == 0 ? pt : -pt);
+          mass += ra(ci, cj, ck);
+        }
+    mass *= Real(0.125) * vol;
+    Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
+    if (has_strength) {
+      force_x += force_sx;
+      force_y += force_sy;
+      force_z += force_sz;
+    }
+    const Real ax = force_x / mass, ay = force_y / mass, az = force_z / mass;
+    Ub(i, j, k) = U(i, j, k) + Real(0.5) * dt * ax;
+    Vb(i, j, k) = V(i, j, k) + Real(0.5) * dt * ay;
+    Wb(i, j, k) = W(i, j, k) + Real(0.5) * dt * az;
+    U(i, j, k) += dt * ax;
+    V(i, j, k) += dt * ay;
+    W(i, j, k) += dt * az;
+  }
+};
+
 }  // namespace
 
 Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
@@ -329,38 +369,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
   const Real axf = g.dx[1] * g.dx[2] * Real(0.25), ayf = g.dx[0] * g.dx[2] * Real(0.25),
              azf = g.dx[0] * g.dx[1] * Real(0.25);
   // (k-columns, core/columns.hpp)
-  auto node_update = [=] KOKKOS_FUNCTION(const auto& pha, const auto& qa, const auto& ra,
-                                         const auto& U, const auto& V, const auto& W,
-                                         const auto& Ub, const auto& Vb, const auto& Wb,
-                                         Real force_sx, Real force_sy, Real force_sz, int i, int j,
-                                         int k) {
-    Real fxs = 0, fys = 0, fzs = 0, mass = 0;
-    for (int c = 0; c < 2; ++c)
-      for (int b = 0; b < 2; ++b)
-        for (int a = 0; a < 2; ++a) {
-          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
-          const Real pt = pha(ci, cj, ck) + qa(ci, cj, ck);
-          // a cell below the node along an axis pushes it up, a cell above pushes it down
-          fxs += (a == 0 ? pt : -pt);
-          fys += (b == 0 ? pt : -pt);
-          fzs += (c == 0 ? pt : -pt);
-          mass += ra(ci, cj, ck);
-        }
-    mass *= Real(0.125) * vol;
-    Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
-    if (has_strength) {
-      force_x += force_sx;
-      force_y += force_sy;
-      force_z += force_sz;
-    }
-    const Real ax = force_x / mass, ay = force_y / mass, az = force_z / mass;
-    Ub(i, j, k) = U(i, j, k) + Real(0.5) * dt * ax;
-    Vb(i, j, k) = V(i, j, k) + Real(0.5) * dt * ay;
-    Wb(i, j, k) = W(i, j, k) + Real(0.5) * dt * az;
-    U(i, j, k) += dt * ax;
-    V(i, j, k) += dt * ay;
-    W(i, j, k) += dt * az;
-  };
+  const NodeUpdate node_update{vol, axf, ayf, azf, dt, has_strength};
   if (has_strength) {
     Kokkos::parallel_for(
         "lagrange::acceleration", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {

@@ -138,7 +138,9 @@ struct RemapSource {
     if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
       for (int k = k0; k < k1; ++k) stamp(i, j, k) = 0;
     } else {
-      const auto mt = local(dev.mat), st = local(stamp);
+      // (one type per declaration: the int, unsigned char and Real accessors differ)
+      const auto mt = local(dev.mat);
+      const auto st = local(stamp);
       const auto v = local(vf), m = local(mf), en = local(ef), p0 = local(pre), p1 = local(post),
                  r = local(rho), es = local(e), cr = local(crho), cen = local(ce);
       auto loop = [&](auto several) {
@@ -388,8 +390,10 @@ struct FaceFluxes {
   KOKKOS_INLINE_FUNCTION void column(int i, int j, int k0, int k1) const {
     if constexpr (std::is_same_v<Dev, mat::CompactDev>) {
       constexpr int sx = d == 0, sy = d == 1, sz = d == 2;
-      const auto mt = local(dev.mat), v = local(vf), pa = local(pre), ra = local(rho),
-                 ea = local(e), mfa = local(mf), efa = local(ef);
+      // (one type per declaration: the int and Real accessors differ)
+      const auto mt = local(dev.mat);
+      const auto v = local(vf), pa = local(pre), ra = local(rho), ea = local(e), mfa = local(mf),
+                 efa = local(ef);
 #pragma GCC ivdep
       for (int k = k0; k < k1; ++k) {
         const Real f = v(i, j, k);
@@ -637,6 +641,23 @@ void set_sweep_fields(T& t, const Dev& dev, const State& s, int d, int nmat) {
   t.nmat = nmat;
 }
 
+// ff.column(i, j, k0, k1) as a for_columns body (a functor, not an extended lambda: nvcc
+// allows none inside the generic lambda with_axis calls).
+template <class FF>
+struct ColumnBody {
+  FF ff;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    ff.column(i, j, k0, k1);
+  }
+};
+
+// A carrier's cell fields that mm_clear_absent zeroes (at namespace scope: nvcc allows no type
+// local to a function in an extended lambda's captures).
+struct ClearFields {
+  Field3 f[7];
+  int n = 0;
+};
+
 }  // namespace
 
 template <class Dev>
@@ -670,9 +691,7 @@ void Hydro::mm_face_fluxes(const Dev& dev, int d) {
     FaceFluxes<Dev, decltype(a)::value> ff{};
     fill(ff);
     if constexpr (std::is_same_v<Dev, mat::CompactDev>)
-      for_columns(
-          "remap::material_flux", lo, hi,
-          KOKKOS_LAMBDA(int i, int j, int k0, int k1) { ff.column(i, j, k0, k1); });
+      for_columns("remap::material_flux", lo, hi, ColumnBody<decltype(ff)>{ff});
     else
       Kokkos::parallel_for("remap::material_flux", faces, ff);
   });
@@ -718,10 +737,7 @@ void Hydro::mm_clear_absent() {
   const auto end = mesh_.owned_end();
   const Policy3 owned({ng, ng, ng}, {end[0], end[1], end[2]});
   for (int c = 0; c < ncarrier_; ++c) {
-    struct Fields {
-      Field3 f[7];
-      int n = 0;
-    } fs;
+    ClearFields fs;
     if (c == burn_carrier_) {
       fs.f[fs.n++] = burn_->fraction();
     } else if (strength_->pooled()) {

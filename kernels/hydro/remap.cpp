@@ -247,6 +247,24 @@ struct KeFixColumns {
   }
 };
 
+// A split sweep's cell update along axis D, as k-columns (a functor, not an extended lambda:
+// nvcc allows none inside the generic lambda with_axis calls). mf, ef: the axis's fluxes.
+template <int D>
+struct AxisCellUpdate {
+  Field3 rho, e, pre, post, mf, ef;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
+    const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
+               p1 = column(post, i, j);
+    const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy), el = column(ef, i, j),
+               eh = column(ef, i + sx, j + sy);
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k)
+      update_cell(r[k], en[k], p0[k], p1[k], Real(0) + (ml[k] - mh[k + sz]),
+                  Real(0) + (el[k] - eh[k + sz]));
+  }
+};
+
 }  // namespace
 
 std::vector<Hydro::RemapStep> Hydro::remap_steps(long cycle) const {
@@ -416,26 +434,16 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     const int hi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
                        Mesh::ng + mesh_.owned_cells(2) + 1};
     if (int(ax + ay + az) == 1) {
-      with_axis(ax > 0   ? 0
-                : ay > 0 ? 1
-                         : 2,
-                [&](auto a) {
-                  constexpr int D = decltype(a)::value;
-                  constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
-                  const Field3 mf = D == 0 ? mfx : D == 1 ? mfy : mfz;
-                  const Field3 ef = D == 0 ? efx : D == 1 ? efy : efz;
-                  for_columns(
-                      "remap::cell_update", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-                        const auto r = column(rho, i, j), en = column(e, i, j),
-                                   p0 = column(pre, i, j), p1 = column(post, i, j);
-                        const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy),
-                                   el = column(ef, i, j), eh = column(ef, i + sx, j + sy);
-#pragma GCC ivdep
-                        for (int k = k0; k < k1; ++k)
-                          update_cell(r[k], en[k], p0[k], p1[k], Real(0) + (ml[k] - mh[k + sz]),
-                                      Real(0) + (el[k] - eh[k + sz]));
-                      });
-                });
+      with_axis(
+          ax > 0   ? 0
+          : ay > 0 ? 1
+                   : 2,
+          [&](auto a) {
+            constexpr int D = decltype(a)::value;
+            const Field3 mf = D == 0 ? mfx : D == 1 ? mfy : mfz;
+            const Field3 ef = D == 0 ? efx : D == 1 ? efy : efz;
+            for_columns("remap::cell_update", lo, hi, AxisCellUpdate<D>{rho, e, pre, post, mf, ef});
+          });
     } else {
       Kokkos::parallel_for(
           "remap::cell_update", mesh_.cells_padded(1),
