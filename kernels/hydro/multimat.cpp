@@ -114,23 +114,12 @@ struct RemapSource {
     return i >= lo[0] && i < hi[0] && j >= lo[1] && j < hi[1] && k >= lo[2] && k < hi[2];
   }
 
-  // The shortcut of MaterialState::assign (compact layout): a pure cell whose two face donors
-  // are the same pure material stays that material. The arithmetic is content()'s for one
-  // material, operand for operand, so the result is the same bit for bit.
-  static constexpr bool has_pure = true;
-  KOKKOS_INLINE_FUNCTION bool pure(int i, int j, int k, int& id, Real& r_out, Real& e_out) const {
-    if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
-      return false;
-    } else {
-      id = dev.mat(i, j, k);
-      if (nmat == 1)
-        return pure_update<false>(dev.mat, vf, mf, ef, pre, post, rho, e, i, j, k, r_out, e_out);
-      return pure_update<true>(dev.mat, vf, mf, ef, pre, post, rho, e, i, j, k, r_out, e_out);
-    }
-  }
-  // The same a k-column at a time (MaterialState::assign's pure_columns; dev is the pool
-  // assign starts from). Every operand is loaded and the tests are selects, so GCC vectorizes
-  // the loop; a cell that is not written keeps its values (stored back unchanged).
+  // The shortcut of MaterialState::assign (compact layout), a k-column at a time: a pure cell
+  // whose two face donors are the same pure material stays that material. The arithmetic is
+  // content()'s for one material, operand for operand, so the result is the same bit for bit.
+  // Every operand is loaded and the tests are selects, so GCC vectorizes the loop; a cell that
+  // is not written keeps its values (stored back unchanged). `dev` must be the pool assign
+  // starts from (reads_pool).
   static constexpr bool pure_columns = true;
   template <class Stamp>
   KOKKOS_INLINE_FUNCTION void pure_column(int i, int j, int k0, int k1, const Field3& crho,
@@ -161,7 +150,13 @@ struct RemapSource {
         loop(std::false_type{});
     }
   }
-  // pure()'s arithmetic on any accessors (views, or core/columns.hpp's locals): whether the
+  bool reads_pool(const mat::CompactDev& pool) const {
+    if constexpr (std::is_same_v<Dev, mat::CompactDev>)
+      return dev.mat.data() == pool.mat.data();
+    else
+      return true;
+  }
+  // pure_column's arithmetic on any accessors (views, or core/columns.hpp's locals): whether the
   // cell stays its pure material, and its density and energy if so (computed either way)
   template <bool several, class I, class F>
   KOKKOS_INLINE_FUNCTION bool pure_update(const I& mt, const F& vf_, const F& mf_, const F& ef_,
@@ -384,9 +379,11 @@ struct FaceFluxes {
   // The compact layout a k-column at a time (issue #15; core/columns.hpp): every face of the
   // column as if its donor were pure (the fast path above, its stencil selected from the four
   // cells along d as remap::cell_flux does), then the faces whose donor is mixed again through
-  // operator() (which overwrites what the first loop wrote for them). GCC leaves the first loop
-  // scalar (as remap::cell_flux's), but plain column offsets replace the MDRange's per-point
-  // view indexing.
+  // operator() (which overwrites what the first loop wrote for them). GCC vectorizes the first
+  // loop in some of its instantiations and leaves it scalar ("control flow") in others; either
+  // way plain column offsets replace the MDRange's per-point view indexing. (On a GPU backend
+  // it runs per face and computes a pure flux for a mixed donor too before operator(): more
+  // work per face there than the plain launch; not measured.)
   KOKKOS_INLINE_FUNCTION void column(int i, int j, int k0, int k1) const {
     if constexpr (std::is_same_v<Dev, mat::CompactDev>) {
       constexpr int sx = d == 0, sy = d == 1, sz = d == 2;

@@ -393,9 +393,11 @@ struct HasPure<S, std::void_t<decltype(S::has_pure)>> : std::integral_constant<b
 // shortcut a column at a time, where a loop over k vectorizes (core/columns.hpp):
 //   static constexpr bool pure_columns = true;
 //   void pure_column(i, j, k0, k1, crho, ce, stamp) const;
-// For each k0 <= k < k1: where pure(i, j, k, ...) would hold with the cell's stored material
-// (the source reads the current pool), writes its values to crho, ce and stamps 1; elsewhere
-// stamps 0 and leaves crho, ce as they were (the general path then takes the cell).
+//   bool reads_pool(const CompactDev& pool) const;  // (it reads `pool`, the one assign starts
+//   from)
+// For each k0 <= k < k1: where the cell stays its stored pure material (the shortcut has_pure
+// describes), writes its values to crho, ce and stamps 1; elsewhere stamps 0 and leaves crho,
+// ce as they were (the general path then takes the cell).
 template <class S, class = void>
 struct PureColumns : std::false_type {};
 template <class S>
@@ -554,6 +556,9 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       general(i, j, k, acc);
     };
     if constexpr (PureColumns<Source>::value) {
+      static_assert(!GhostsOnly<Source>::value, "a pure_columns source changes a box of cells");
+      if (!src.reads_pool(old))
+        throw std::logic_error("MaterialState::assign: a pure_columns source reads another pool");
       // k-columns of the changed box (core/columns.hpp): the source's vector pass writes the
       // cells that stay the same pure material and stamps the column (1 written, 0 not), then
       // the general path takes the others, one by one
@@ -570,10 +575,10 @@ void MaterialState::assign(const std::string& name, const Source& src) {
 #if !defined(KOKKOS_ENABLE_CUDA) && !defined(KOKKOS_ENABLE_HIP) && !defined(KOKKOS_ENABLE_SYCL)
       // host backends: the shell as k-columns (a column in a ghost slab of x or y whole, any
       // other its ng cells at each end of k), without shell_cell's divisions per cell
-      const int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
-      reduce_columns(
-          name + "::in_place", lo, hi,
-          KOKKOS_LAMBDA(int i, int j, int, int, long& acc) {
+      // (its own Rank<2> launch, not reduce_columns: the body walks the whole column itself)
+      Kokkos::parallel_reduce(
+          name + "::in_place", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {ex, ey}),
+          KOKKOS_LAMBDA(int i, int j, long& acc) {
             const bool slab = i < ng || i >= ex - ng || j < ng || j >= ey - ng;
             for (int k = 0; k < ez; k = (slab || k != ng - 1) ? k + 1 : ez - ng)
               in_place(i, j, k, acc);
