@@ -137,6 +137,33 @@ void Burn::raise_sound_speed(const Field3& c) const {
       });
 }
 
+namespace {
+
+// The multi-material burn::fraction kernel, a for_cells body (a functor at namespace scope, not
+// a generic extended lambda, which nvcc rejects inside for_cells' own lambdas): the burn
+// fraction of the cells that hold explosive (material x), at the explosive's own density.
+struct MixedFraction {
+  BurnParams b;
+  Real t;
+  Field3 f, tl;
+  int x;
+  Real never;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    for (int s = 0; s < cell.count(); ++s) {
+      const mat::MatRef m = cell.get(s);
+      if (m.m != x || !(m.alpha > 0)) continue;
+      const Real f0 = f(i, j, k);
+      f(i, j, k) = tl(i, j, k) >= never && f0 > 0
+                       ? Real(1)
+                       : update_burn_fraction(b, f0, t, tl(i, j, k), *m.rho);
+    }
+  }
+};
+
+}  // namespace
+
 void Burn::update(const Field3& rho, double dt) {
   time_ += dt;
   const BurnParams b = params_;
@@ -150,18 +177,8 @@ void Burn::update(const Field3& rho, double dt) {
     const int x = material_;
     const int ng = Mesh::ng;
     const Real never = Real(kNeverLit);
-    mm_->for_cells(
-        "burn::fraction", {ng, ng, ng}, mesh_.owned_end(),
-        KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-          for (int s = 0; s < cell.count(); ++s) {
-            const mat::MatRef m = cell.get(s);
-            if (m.m != x || !(m.alpha > 0)) continue;
-            const Real f0 = f(i, j, k);
-            f(i, j, k) = tl(i, j, k) >= never && f0 > 0
-                             ? Real(1)
-                             : update_burn_fraction(b, f0, t, tl(i, j, k), *m.rho);
-          }
-        });
+    mm_->for_cells("burn::fraction", {ng, ng, ng}, mesh_.owned_end(),
+                   MixedFraction{b, t, f, tl, x, never});
     return;
   }
   Kokkos::parallel_for(

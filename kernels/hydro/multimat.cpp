@@ -453,53 +453,214 @@ BurnHook burn_hook(const burn::Burn* b) {
   return {b->material(), b->fraction(), b->params().d_cj, b->mixed(), b->unreacted(), b->e0()};
 }
 
+// The for_cells bodies of the multi-material kernels below (functors at namespace scope, not
+// generic extended lambdas, which nvcc rejects inside for_cells' own lambdas).
+
+// eos::pressure_sound_speed (Hydro::mm_equation_of_state)
+struct MixedEos {
+  mat::MaterialSet mats;
+  BurnHook bh;
+  Field3 p, c, rho;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    Real psum = 0, k2 = 0, plast = 0, clast = 0;
+    int n = 0;
+    bool unburnt = false;
+    for (int s = 0; s < cell.count(); ++s) {
+      const MatRef m = cell.get(s);
+      if (!(m.alpha > 0)) continue;
+      Real pm, cm;
+      if (bh.mixed && m.m == bh.material) {
+        const Real f = bh.f(i, j, k);
+        pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+        cm = burn::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+        unburnt = f < 1;
+      } else {
+        pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
+        cm = mats.eos[m.m].sound_speed_cut(*m.rho, *m.e);
+        if (m.m == bh.material) {
+          const Real f = bh.f(i, j, k);
+          pm *= f;
+          unburnt = f < 1;
+        }
+      }
+      *m.p = pm;
+      psum += m.alpha * pm;
+      k2 += m.alpha * *m.rho * cm * cm;
+      plast = pm;
+      clast = cm;
+      ++n;
+    }
+    if (n == 1) {
+      p(i, j, k) = plast;
+      c(i, j, k) = clast;
+    } else {
+      p(i, j, k) = psum;
+      c(i, j, k) = msqrt(k2 / rho(i, j, k));
+    }
+    // the programmed front crosses at most a cell per step
+    if (unburnt) c(i, j, k) = mmax(c(i, j, k), bh.d_cj);
+  }
+};
+
+// lagrange::predictor (Hydro::mm_predictor)
+struct MixedPredictor {
+  mat::MaterialSet mats;
+  BurnHook bh;
+  Field3 q, ph, rho;
+  Field3 u, v, w;
+  Real ax, ay, az;
+  Real vol;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
+    const Real v_half = vol + dv;
+    Real sum = 0, last = 0;
+    int n = 0;
+    const bool several = mat::holds_several(cell);
+    const Real qs = q(i, j, k) / rho(i, j, k);
+    for (int s = 0; s < cell.count(); ++s) {
+      const MatRef m = cell.get(s);
+      if (!(m.alpha > 0)) continue;
+      const Real mass = *m.rho * vol;
+      const Real e_half = pdv_energy(*m.e, *m.p, several ? qs * *m.rho : q(i, j, k), dv, mass);
+      Real pm;
+      if (bh.mixed && m.m == bh.material) {
+        pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
+                                         mass / v_half, e_half);
+      } else {
+        pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
+        if (m.m == bh.material) pm *= bh.f(i, j, k);
+      }
+      *m.ph = pm;
+      sum += m.alpha * pm;
+      last = pm;
+      ++n;
+    }
+    ph(i, j, k) = n == 1 ? last : sum;
+  }
+};
+
+// lagrange::corrector (Hydro::mm_corrector)
+struct MixedCorrector {
+  mat::MaterialSet mats;
+  bool relax;
+  int iters;
+  Real tol, fmin, sfloor;
+  BurnHook bh;
+  Field3 q, rho, e;
+  Field3 fx, fy, fz;
+  Real vol;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
+    const Real vnew = vol + dv;
+    // equal strain: every material takes the cell's relative volume change
+    int slot[kMaxMaterials], id[kMaxMaterials];
+    Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
+    int n = 0;
+    const bool several = mat::holds_several(cell);
+    const Real qs = q(i, j, k) / rho(i, j, k);
+    for (int s = 0; s < cell.count(); ++s) {
+      const MatRef m = cell.get(s);
+      if (!(m.alpha > 0)) continue;
+      const Real mass = *m.rho * vol;
+      *m.e = pdv_energy(*m.e, *m.ph, several ? qs * *m.rho : q(i, j, k), dv, mass);
+      *m.rho = mass / vnew;
+      slot[n] = s;
+      id[n] = m.m;
+      mv[n] = m.alpha * vnew;
+      mm[n] = *m.rho * mv[n];
+      me[n] = *m.e;
+      ++n;
+    }
+    if (relax && n > 1) {
+      // each material at its own EOS; an explosive at its burn closure, frozen F (its
+      // pressure as the EOS kernel forms it, without the tension cutoffs, as for the others)
+      const auto pc = [&](int s, Real r, Real en, Real& ps, Real& c2) {
+        const eos::Eos& eq = mats.eos[id[s]];
+        if (id[s] != bh.material) {
+          ps = eq.pressure(r, en);
+          c2 = eq.sound_speed2(r, en);
+        } else if (bh.mixed) {
+          const Real f = bh.f(i, j, k);
+          ps = burn::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+          c2 = burn::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+        } else {
+          const Real f = bh.f(i, j, k);
+          ps = burn::he_pressure(eq, f, r, en);
+          c2 = burn::he_sound_speed2(eq, f, r, en);
+        }
+      };
+      relax_pressures_with(n, pc, mv, mm, me, pm, iters, tol, fmin * vnew);
+    }
+    bool moved = relax && n > 1;
+    if (sfloor > 0 && n > 1) moved = solid_floor(n, mats.eos, id, mv, mm, me, sfloor) || moved;
+    if (moved) {
+      Real vsum = 0;
+      for (int s = 0; s < n; ++s) vsum += mv[s];
+      for (int s = 0; s < n; ++s) {
+        const MatRef m = cell.get(slot[s]);
+        cell.set_alpha(slot[s], mv[s] / vsum);
+        *m.rho = mm[s] / mv[s];
+        *m.e = me[s];
+      }
+    }
+    if (cell.aliases() || n == 0) return;
+    if (n == 1) {
+      const MatRef m = cell.get(slot[0]);
+      rho(i, j, k) = *m.rho;
+      e(i, j, k) = *m.e;
+      return;
+    }
+    Real rsum = 0, esum = 0;
+    for (int s = 0; s < n; ++s) {
+      const MatRef m = cell.get(slot[s]);
+      rsum += m.alpha * *m.rho;
+      esum += m.alpha * *m.rho * *m.e;
+    }
+    rho(i, j, k) = rsum;
+    e(i, j, k) = esum / rsum;
+  }
+};
+
+// remap::ke_fix (Hydro::mm_ke_fix)
+struct MixedKeFix {
+  Field3 kel, rho, e, post;
+  bool by_mass;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    // kel: each node's loss per unit mass of its 8 cells (remap.cpp, by_mass), so the cell
+    // takes the sum over its corners as specific energy; or (equal shares) the node's loss,
+    // of which the cell takes an eighth. The same specific energy to every material keeps
+    // the cell average consistent; where it is taken away (< 0), no material gives more
+    // than ke_fix_floor allows
+    const Real sum = corner_sum(kel, i, j, k);
+    Real de = by_mass ? sum : Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+    for (int s = 0; s < cell.count(); ++s) {
+      const MatRef m = cell.get(s);
+      if (m.alpha > 0) de = mmax(de, ke_fix_floor(*m.e));
+    }
+    for (int s = 0; s < cell.count(); ++s) {
+      const MatRef m = cell.get(s);
+      if (m.alpha > 0) *m.e += de;
+    }
+    if (!cell.aliases()) e(i, j, k) += de;
+  }
+};
+
 }  // namespace
 
 void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
   auto p = s_.p, c = s_.c, rho = s_.rho;
   const BurnHook bh = burn_hook(burn_.get());
-  mm_->for_cells(
-      "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        Real psum = 0, k2 = 0, plast = 0, clast = 0;
-        int n = 0;
-        bool unburnt = false;
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (!(m.alpha > 0)) continue;
-          Real pm, cm;
-          if (bh.mixed && m.m == bh.material) {
-            const Real f = bh.f(i, j, k);
-            pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
-            cm = burn::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
-            unburnt = f < 1;
-          } else {
-            pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
-            cm = mats.eos[m.m].sound_speed_cut(*m.rho, *m.e);
-            if (m.m == bh.material) {
-              const Real f = bh.f(i, j, k);
-              pm *= f;
-              unburnt = f < 1;
-            }
-          }
-          *m.p = pm;
-          psum += m.alpha * pm;
-          k2 += m.alpha * *m.rho * cm * cm;
-          plast = pm;
-          clast = cm;
-          ++n;
-        }
-        if (n == 1) {
-          p(i, j, k) = plast;
-          c(i, j, k) = clast;
-        } else {
-          p(i, j, k) = psum;
-          c(i, j, k) = msqrt(k2 / rho(i, j, k));
-        }
-        // the programmed front crosses at most a cell per step
-        if (unburnt) c(i, j, k) = mmax(c(i, j, k), bh.d_cj);
-      });
+  mm_->for_cells("eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
+                 MixedEos{mats, bh, p, c, rho});
 }
 
 void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
@@ -508,35 +669,8 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   auto u = s_.u, v = s_.v, w = s_.w;
   const Real ax = f[0], ay = f[1], az = f[2];
   const BurnHook bh = burn_hook(burn_.get());
-  mm_->for_cells(
-      "lagrange::predictor", all_lo(), all_hi(mesh_),
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
-        const Real v_half = vol + dv;
-        Real sum = 0, last = 0;
-        int n = 0;
-        const bool several = mat::holds_several(cell);
-        const Real qs = q(i, j, k) / rho(i, j, k);
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (!(m.alpha > 0)) continue;
-          const Real mass = *m.rho * vol;
-          const Real e_half = pdv_energy(*m.e, *m.p, several ? qs * *m.rho : q(i, j, k), dv, mass);
-          Real pm;
-          if (bh.mixed && m.m == bh.material) {
-            pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
-                                             mass / v_half, e_half);
-          } else {
-            pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
-            if (m.m == bh.material) pm *= bh.f(i, j, k);
-          }
-          *m.ph = pm;
-          sum += m.alpha * pm;
-          last = pm;
-          ++n;
-        }
-        ph(i, j, k) = n == 1 ? last : sum;
-      });
+  mm_->for_cells("lagrange::predictor", all_lo(), all_hi(mesh_),
+                 MixedPredictor{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol});
 }
 
 void Hydro::mm_corrector(Real vol) {
@@ -551,76 +685,7 @@ void Hydro::mm_corrector(Real vol) {
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   mm_->for_cells(
       "lagrange::corrector", all_lo(), all_hi(mesh_),
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-        const Real vnew = vol + dv;
-        // equal strain: every material takes the cell's relative volume change
-        int slot[kMaxMaterials], id[kMaxMaterials];
-        Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
-        int n = 0;
-        const bool several = mat::holds_several(cell);
-        const Real qs = q(i, j, k) / rho(i, j, k);
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (!(m.alpha > 0)) continue;
-          const Real mass = *m.rho * vol;
-          *m.e = pdv_energy(*m.e, *m.ph, several ? qs * *m.rho : q(i, j, k), dv, mass);
-          *m.rho = mass / vnew;
-          slot[n] = s;
-          id[n] = m.m;
-          mv[n] = m.alpha * vnew;
-          mm[n] = *m.rho * mv[n];
-          me[n] = *m.e;
-          ++n;
-        }
-        if (relax && n > 1) {
-          // each material at its own EOS; an explosive at its burn closure, frozen F (its
-          // pressure as the EOS kernel forms it, without the tension cutoffs, as for the others)
-          const auto pc = [&](int s, Real r, Real en, Real& ps, Real& c2) {
-            const eos::Eos& eq = mats.eos[id[s]];
-            if (id[s] != bh.material) {
-              ps = eq.pressure(r, en);
-              c2 = eq.sound_speed2(r, en);
-            } else if (bh.mixed) {
-              const Real f = bh.f(i, j, k);
-              ps = burn::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
-              c2 = burn::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
-            } else {
-              const Real f = bh.f(i, j, k);
-              ps = burn::he_pressure(eq, f, r, en);
-              c2 = burn::he_sound_speed2(eq, f, r, en);
-            }
-          };
-          relax_pressures_with(n, pc, mv, mm, me, pm, iters, tol, fmin * vnew);
-        }
-        bool moved = relax && n > 1;
-        if (sfloor > 0 && n > 1) moved = solid_floor(n, mats.eos, id, mv, mm, me, sfloor) || moved;
-        if (moved) {
-          Real vsum = 0;
-          for (int s = 0; s < n; ++s) vsum += mv[s];
-          for (int s = 0; s < n; ++s) {
-            const MatRef m = cell.get(slot[s]);
-            cell.set_alpha(slot[s], mv[s] / vsum);
-            *m.rho = mm[s] / mv[s];
-            *m.e = me[s];
-          }
-        }
-        if (cell.aliases() || n == 0) return;
-        if (n == 1) {
-          const MatRef m = cell.get(slot[0]);
-          rho(i, j, k) = *m.rho;
-          e(i, j, k) = *m.e;
-          return;
-        }
-        Real rsum = 0, esum = 0;
-        for (int s = 0; s < n; ++s) {
-          const MatRef m = cell.get(slot[s]);
-          rsum += m.alpha * *m.rho;
-          esum += m.alpha * *m.rho * *m.e;
-        }
-        rho(i, j, k) = rsum;
-        e(i, j, k) = esum / rsum;
-      });
+      MixedCorrector{mats, relax, iters, tol, fmin, sfloor, bh, q, rho, e, fx, fy, fz, vol});
 }
 
 namespace {
@@ -765,25 +830,7 @@ void Hydro::mm_ke_fix() {
   const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
-  mm_->for_cells(
-      "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        // kel: each node's loss per unit mass of its 8 cells (remap.cpp, by_mass), so the cell
-        // takes the sum over its corners as specific energy; or (equal shares) the node's loss,
-        // of which the cell takes an eighth. The same specific energy to every material keeps
-        // the cell average consistent; where it is taken away (< 0), no material gives more
-        // than ke_fix_floor allows
-        const Real sum = corner_sum(kel, i, j, k);
-        Real de = by_mass ? sum : Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (m.alpha > 0) de = mmax(de, ke_fix_floor(*m.e));
-        }
-        for (int s = 0; s < cell.count(); ++s) {
-          const MatRef m = cell.get(s);
-          if (m.alpha > 0) *m.e += de;
-        }
-        if (!cell.aliases()) e(i, j, k) += de;
-      });
+  mm_->for_cells("remap::ke_fix", lo, hi, MixedKeFix{kel, rho, e, post, by_mass});
 }
 
 // Explicit instantiations for the layouts' device handles.

@@ -423,26 +423,38 @@ void MaterialState::carrier_density(unsigned mask, const Field3& out) const {
   carrier_densities(&mask, &out, 1);
 }
 
+namespace {
+
+// The carrier_densities kernel, a for_cells body (a functor at namespace scope, not a generic
+// extended lambda, which nvcc rejects inside for_cells' own lambdas).
+struct CarrierDensities {
+  static constexpr int kMax = kMaxMaterials + 1;
+  unsigned mask[kMax];
+  Field3 out[kMax];
+  int n;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    for (int q = 0; q < n; ++q) {
+      Real r = 0;
+      for (int s = 0; s < cell.count(); ++s) {
+        const MatRef m = cell.get(s);
+        if (m.alpha > 0 && (mask[q] >> m.m) & 1u) r += m.alpha * *m.rho;
+      }
+      out[q](i, j, k) = r;
+    }
+  }
+};
+
+}  // namespace
+
 void MaterialState::carrier_densities(const unsigned* mask, const Field3* out, int n) const {
-  constexpr int kMax = kMaxMaterials + 1;
+  constexpr int kMax = CarrierDensities::kMax;
   if (n < 1 || n > kMax) throw RunError("carrier_densities: 1 to kMaxMaterials + 1 carriers");
-  struct Carriers {
-    unsigned mask[kMax];
-    Field3 out[kMax];
-  } c;
+  CarrierDensities c;
   for (int q = 0; q < n; ++q) c.mask[q] = mask[q], c.out[q] = out[q];
-  for_cells(
-      "matter::carrier_density", {0, 0, 0}, {ex_, ey_, ez_},
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        for (int q = 0; q < n; ++q) {
-          Real r = 0;
-          for (int s = 0; s < cell.count(); ++s) {
-            const MatRef m = cell.get(s);
-            if (m.alpha > 0 && (c.mask[q] >> m.m) & 1u) r += m.alpha * *m.rho;
-          }
-          c.out[q](i, j, k) = r;
-        }
-      });
+  c.n = n;
+  for_cells("matter::carrier_density", {0, 0, 0}, {ex_, ey_, ez_}, c);
 }
 
 Field3 MaterialState::fraction(int m) const {

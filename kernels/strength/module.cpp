@@ -423,6 +423,139 @@ SetStore set_store(const StressSet& set, const mat::MaterialState* mm,
   return st;
 }
 
+// The for_cells bodies of the multi-material kernels below (functors at namespace scope, not
+// generic extended lambdas, which nvcc rejects inside for_cells' own lambdas).
+
+// strength::sound_speed (Strength::mm_stiffen_sound_speed)
+struct StiffenSoundSpeed {
+  MaterialModels models;
+  StrainOf eps;
+  Field3 rho, c;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    // the cell's shear stiffness: sum alpha_m G_m over its materials with strength, each at
+    // its own state and plastic strain
+    Real G = 0;
+    bool any = false;
+    for (int s = 0; s < cell.count(); ++s) {
+      const mat::MatRef m = cell.get(s);
+      const FlowStress& f = models.f[m.m];
+      if (!(m.alpha > 0) || f.kind == kNoStrength) continue;
+      const PointState x = point_state(f, models.rho0[m.m], *m.rho, *m.e, *m.p,
+                                       eps.get(cell, s, m.m, i, j, k), Real(0));
+      G += m.alpha * f.shear_modulus(x);
+      any = true;
+    }
+    if (!any) return;
+    const Real c0 = c(i, j, k);
+    c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * G / rho(i, j, k));
+  }
+};
+
+// strength::predictor (Strength::mm_predictor), for stress set st of material mid
+struct MixedPredictor {
+  SetStore st;
+  int mid;
+  bool first;
+  SymField cs;
+  MaterialModels models;
+  Field3 u, v, w;
+  Real rx, ry, rz, h;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    const int slot = find_material(cell, mid);
+    if (slot < 0) {
+      if constexpr (std::is_same_v<Cell, mat::DenseCell>) st.set_sh(cell, 0, i, j, k, Sym{});
+      if (first) cs.set(i, j, k, Sym{});
+      return;
+    }
+    const mat::MatRef m = cell.get(slot);
+    const FlowStress& f = models.f[mid];
+    const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
+    const PointState x = point_state(f, models.rho0[mid], *m.rho, *m.e, *m.ph,
+                                     st.eps(cell, slot, i, j, k), equivalent_strain_rate(L));
+    const Real G = f.shear_modulus(x);
+    Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, h);
+    radial_return(t, f.yield_stress(x), G);
+    st.set_sh(cell, slot, i, j, k, t);
+    // the cell's stress on its nodes: each material's deviator over its share of the
+    // cell, summed in material-id order
+    const Real a = m.alpha;
+    Sym c = first ? Sym{} : cs.get(i, j, k);
+    c = Sym{c.xx + a * t.xx, c.yy + a * t.yy, c.zz + a * t.zz,
+            c.xy + a * t.xy, c.yz + a * t.yz, c.zx + a * t.zx};
+    cs.set(i, j, k, c);
+  }
+};
+
+// strength::corrector (Strength::mm_corrector), for stress set st of material mid
+struct MixedCorrector {
+  SetStore st;
+  int mid;
+  SymField cs;
+  MaterialModels models;
+  Field3 ub, vb, wb;
+  Real rx, ry, rz, dt;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    const int slot = find_material(cell, mid);
+    if (slot < 0) {
+      if constexpr (std::is_same_v<Cell, mat::DenseCell>) st.set_s(cell, 0, i, j, k, Sym{});
+      return;
+    }
+    const mat::MatRef m = cell.get(slot);
+    const FlowStress& f = models.f[mid];
+    const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
+    // the work of the material's half-step deviator, alpha_m s_m : L V dt (its part of
+    // the power the cell's nodal forces took), per unit mass of the material; a material
+    // alone in its cell has the cell's half-step stress
+    const Sym half = mat::holds_several(cell) ? st.get_sh(cell, slot, i, j, k) : cs.get(i, j, k);
+    const Real power = stress_power(half, L);
+    const Real r = *m.rho, en = *m.e;
+    Real& ep = st.eps(cell, slot, i, j, k);
+    const PointState x =
+        point_state(f, models.rho0[mid], r, en, *m.ph, ep, equivalent_strain_rate(L));
+    const Real G = f.shear_modulus(x);
+    Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, dt);
+    const ReturnResult rr = radial_return(t, f.yield_stress(x), G);
+    st.set_s(cell, slot, i, j, k, t);
+    ep += rr.d_eps_p;
+    // Where the work is negative (elastic unloading) in a cell that also holds materials
+    // without strength, the material gives at most half of its specific energy and the
+    // rest comes from those others by mass: the deviator a mixed cell holds came by remap
+    // without the elastic energy that built it, so its unloading under a gas's strain can
+    // take more than the solid has (cold copper, e ~ 5e-8, went negative in the
+    // perforator). Total energy stays exact unless the others cannot pay either.
+    Real de = dt * power / r, de_other = 0;
+    const Real floor = -Real(0.5) * mmax(en, Real(0));
+    if (de < floor) {
+      Real other = 0, emin_other = Real(1e30);
+      for (int n = 0; n < cell.count(); ++n) {
+        const mat::MatRef o = cell.get(n);
+        if (!(o.alpha > 0) || models.f[o.m].kind != kNoStrength) continue;
+        other += o.alpha * *o.rho;
+        emin_other = mmin(emin_other, *o.e);
+      }
+      if (other > 0) {
+        const Real rest = (de - floor) * m.alpha * r / other;  // per unit mass of the others
+        if (rest >= -Real(0.5) * mmax(emin_other, Real(0))) {
+          de = floor;
+          de_other = rest;
+        }
+      }
+    }
+    *m.e = en + de;
+    if (de_other != 0)
+      for (int n = 0; n < cell.count(); ++n) {
+        const mat::MatRef o = cell.get(n);
+        if (o.alpha > 0 && models.f[o.m].kind == kNoStrength) *o.e += de_other;
+      }
+  }
+};
+
 }  // namespace
 
 void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const {
@@ -434,28 +567,10 @@ void Strength::mm_stiffen_sound_speed(const Field3& rho, const Field3& c) const 
   } else {
     for (const StressSet& st : sets_) eps.f[st.material] = st.eps_p;
   }
-  mm_->for_cells(
-      "strength::sound_speed", {0, 0, 0},
-      {mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
-       mesh_.extent(Centering::Cell, 2)},
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        // the cell's shear stiffness: sum alpha_m G_m over its materials with strength, each at
-        // its own state and plastic strain
-        Real G = 0;
-        bool any = false;
-        for (int s = 0; s < cell.count(); ++s) {
-          const mat::MatRef m = cell.get(s);
-          const FlowStress& f = models.f[m.m];
-          if (!(m.alpha > 0) || f.kind == kNoStrength) continue;
-          const PointState x = point_state(f, models.rho0[m.m], *m.rho, *m.e, *m.p,
-                                           eps.get(cell, s, m.m, i, j, k), Real(0));
-          G += m.alpha * f.shear_modulus(x);
-          any = true;
-        }
-        if (!any) return;
-        const Real c0 = c(i, j, k);
-        c(i, j, k) = msqrt(c0 * c0 + Real(4) / Real(3) * G / rho(i, j, k));
-      });
+  mm_->for_cells("strength::sound_speed", {0, 0, 0},
+                 {mesh_.extent(Centering::Cell, 0), mesh_.extent(Centering::Cell, 1),
+                  mesh_.extent(Centering::Cell, 2)},
+                 StiffenSoundSpeed{models, eps, rho, c});
 }
 
 void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, Real dt) {
@@ -476,34 +591,9 @@ void Strength::mm_predictor(const Field3& u, const Field3& v, const Field3& w, R
     const SetStore st = set_store(sets_[q], mm_, pure_, half_);
     const int mid = st.mid;
     const bool first = q == 0;
-    mm_->for_cells(
-        "strength::predictor", {ng - 1, ng - 1, ng - 1}, {end[0] + 1, end[1] + 1, end[2] + 1},
-        KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-          (void)st;  // (captured here: nvcc allows no first capture in an if constexpr)
-          const int slot = find_material(cell, mid);
-          if (slot < 0) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
-              st.set_sh(cell, 0, i, j, k, Sym{});
-            if (first) cs.set(i, j, k, Sym{});
-            return;
-          }
-          const mat::MatRef m = cell.get(slot);
-          const FlowStress& f = models.f[mid];
-          const Mat3 L = cell_gradient(u, v, w, i, j, k, rx, ry, rz);
-          const PointState x = point_state(f, models.rho0[mid], *m.rho, *m.e, *m.ph,
-                                           st.eps(cell, slot, i, j, k), equivalent_strain_rate(L));
-          const Real G = f.shear_modulus(x);
-          Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, h);
-          radial_return(t, f.yield_stress(x), G);
-          st.set_sh(cell, slot, i, j, k, t);
-          // the cell's stress on its nodes: each material's deviator over its share of the
-          // cell, summed in material-id order
-          const Real a = m.alpha;
-          Sym c = first ? Sym{} : cs.get(i, j, k);
-          c = Sym{c.xx + a * t.xx, c.yy + a * t.yy, c.zz + a * t.zz,
-                  c.xy + a * t.xy, c.yz + a * t.yz, c.zx + a * t.zx};
-          cs.set(i, j, k, c);
-        });
+    mm_->for_cells("strength::predictor", {ng - 1, ng - 1, ng - 1},
+                   {end[0] + 1, end[1] + 1, end[2] + 1},
+                   MixedPredictor{st, mid, first, cs, models, u, v, w, rx, ry, rz, h});
   }
 }
 
@@ -516,65 +606,8 @@ void Strength::mm_corrector(const Field3& ub, const Field3& vb, const Field3& wb
   for (int q = 0; q < sets(); ++q) {
     const SetStore st = set_store(sets_[q], mm_, pure_, half_);
     const int mid = st.mid;
-    mm_->for_cells(
-        "strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
-        KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-          (void)st;  // (captured here: nvcc allows no first capture in an if constexpr)
-          const int slot = find_material(cell, mid);
-          if (slot < 0) {
-            if constexpr (std::is_same_v<std::decay_t<decltype(cell)>, mat::DenseCell>)
-              st.set_s(cell, 0, i, j, k, Sym{});
-            return;
-          }
-          const mat::MatRef m = cell.get(slot);
-          const FlowStress& f = models.f[mid];
-          const Mat3 L = cell_gradient(ub, vb, wb, i, j, k, rx, ry, rz);
-          // the work of the material's half-step deviator, alpha_m s_m : L V dt (its part of
-          // the power the cell's nodal forces took), per unit mass of the material; a material
-          // alone in its cell has the cell's half-step stress
-          const Sym half =
-              mat::holds_several(cell) ? st.get_sh(cell, slot, i, j, k) : cs.get(i, j, k);
-          const Real power = stress_power(half, L);
-          const Real r = *m.rho, en = *m.e;
-          Real& ep = st.eps(cell, slot, i, j, k);
-          const PointState x =
-              point_state(f, models.rho0[mid], r, en, *m.ph, ep, equivalent_strain_rate(L));
-          const Real G = f.shear_modulus(x);
-          Sym t = elastic_trial_rotated(st.get_s(cell, slot, i, j, k), L, G, dt);
-          const ReturnResult rr = radial_return(t, f.yield_stress(x), G);
-          st.set_s(cell, slot, i, j, k, t);
-          ep += rr.d_eps_p;
-          // Where the work is negative (elastic unloading) in a cell that also holds materials
-          // without strength, the material gives at most half of its specific energy and the
-          // rest comes from those others by mass: the deviator a mixed cell holds came by remap
-          // without the elastic energy that built it, so its unloading under a gas's strain can
-          // take more than the solid has (cold copper, e ~ 5e-8, went negative in the
-          // perforator). Total energy stays exact unless the others cannot pay either.
-          Real de = dt * power / r, de_other = 0;
-          const Real floor = -Real(0.5) * mmax(en, Real(0));
-          if (de < floor) {
-            Real other = 0, emin_other = Real(1e30);
-            for (int n = 0; n < cell.count(); ++n) {
-              const mat::MatRef o = cell.get(n);
-              if (!(o.alpha > 0) || models.f[o.m].kind != kNoStrength) continue;
-              other += o.alpha * *o.rho;
-              emin_other = mmin(emin_other, *o.e);
-            }
-            if (other > 0) {
-              const Real rest = (de - floor) * m.alpha * r / other;  // per unit mass of the others
-              if (rest >= -Real(0.5) * mmax(emin_other, Real(0))) {
-                de = floor;
-                de_other = rest;
-              }
-            }
-          }
-          *m.e = en + de;
-          if (de_other != 0)
-            for (int n = 0; n < cell.count(); ++n) {
-              const mat::MatRef o = cell.get(n);
-              if (o.alpha > 0 && models.f[o.m].kind == kNoStrength) *o.e += de_other;
-            }
-        });
+    mm_->for_cells("strength::corrector", {ng, ng, ng}, mesh_.owned_end(),
+                   MixedCorrector{st, mid, cs, models, ub, vb, wb, rx, ry, rz, dt});
   }
 }
 

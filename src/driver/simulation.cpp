@@ -291,6 +291,32 @@ double energy_for_pressure(const eos::Eos& eos, double rho, double p) {
   return (p - p0) / slope;
 }
 
+// The multi-material init::deposit kernel (Simulation::initialize), a for_cells body (a functor
+// at namespace scope, not a generic extended lambda, which nvcc rejects inside for_cells' own
+// lambdas): region r's energy deposit, the same specific energy to every material of a cell.
+struct MixedDeposit {
+  Geometry g;
+  RegionDev r;
+  int samples;
+  double per_volume_fraction;
+  Field3 rho, e;
+  double vol;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
+    const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
+    const double f = r.fraction(lo, h, samples);
+    if (!(f > 0)) return;
+    const Real de = Real(per_volume_fraction * f / (double(rho(i, j, k)) * vol));
+    for (int q = 0; q < cell.count(); ++q) {
+      const mat::MatRef mr = cell.get(q);
+      if (mr.alpha > 0) *mr.e += de;
+    }
+    if (!cell.aliases()) e(i, j, k) += de;
+  }
+};
+
 }  // namespace
 
 Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
@@ -528,20 +554,8 @@ void Simulation::initialize() {
     const double vol = g.cell_volume();
     if (mm) {
       const int ng = Mesh::ng;
-      mm->for_cells(
-          "init::deposit", {ng, ng, ng}, mesh_->owned_end(),
-          KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-            const double lo[3] = {g.node_coord(0, i), g.node_coord(1, j), g.node_coord(2, k)};
-            const double h[3] = {g.dx[0], g.dx[1], g.dx[2]};
-            const double f = r.fraction(lo, h, samples);
-            if (!(f > 0)) return;
-            const Real de = Real(per_volume_fraction * f / (double(rho(i, j, k)) * vol));
-            for (int q = 0; q < cell.count(); ++q) {
-              const mat::MatRef mr = cell.get(q);
-              if (mr.alpha > 0) *mr.e += de;
-            }
-            if (!cell.aliases()) e(i, j, k) += de;
-          });
+      mm->for_cells("init::deposit", {ng, ng, ng}, mesh_->owned_end(),
+                    MixedDeposit{g, r, samples, per_volume_fraction, rho, e, vol});
       continue;
     }
     Kokkos::parallel_for(
