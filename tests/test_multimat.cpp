@@ -1070,6 +1070,31 @@ struct Closure {
   double mass_change, energy_change;
 };
 
+// The test::pressures kernel, a for_cells body (a functor at namespace scope, not a generic
+// extended lambda, which nvcc rejects inside for_cells' own lambdas): the relative spread of a
+// cell's water and air pressures, and its water fraction.
+struct CellPressures {
+  eos::Eos water, air;
+  Field3 spread, alpha;
+
+  template <class Cell>
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
+    Real pw = 0, pa = 0, aw = 0;
+    for (int s = 0; s < cell.count(); ++s) {
+      const mat::MatRef q = cell.get(s);
+      if (!(q.alpha > 0)) continue;
+      if (q.m == 0) {
+        pw = water.pressure(*q.rho, *q.e);
+        aw = q.alpha;
+      } else {
+        pa = air.pressure(*q.rho, *q.e);
+      }
+    }
+    spread(i, j, k) = mabs(pw - pa) / pw;
+    alpha(i, j, k) = aw;
+  }
+};
+
 Closure one_cycle_closure(const std::string& layout, const std::string& closure) {
   const Scene scene = test::load_scene("water_air.yaml",
                                        {"numerics.layout=" + layout, "numerics.closure=" + closure,
@@ -1091,23 +1116,8 @@ Closure one_cycle_closure(const std::string& layout, const std::string& closure)
   Field3 spread = m.new_field("spread", Centering::Cell);
   Field3 alpha = m.new_field("alpha", Centering::Cell);
   const int ng = Mesh::ng;
-  mm->for_cells(
-      "test::pressures", {ng, ng, ng}, m.owned_end(),
-      KOKKOS_LAMBDA(int i, int j, int k, const auto& cell) {
-        Real pw = 0, pa = 0, aw = 0;
-        for (int s = 0; s < cell.count(); ++s) {
-          const mat::MatRef q = cell.get(s);
-          if (!(q.alpha > 0)) continue;
-          if (q.m == 0) {
-            pw = water.pressure(*q.rho, *q.e);
-            aw = q.alpha;
-          } else {
-            pa = air.pressure(*q.rho, *q.e);
-          }
-        }
-        spread(i, j, k) = mabs(pw - pa) / pw;
-        alpha(i, j, k) = aw;
-      });
+  mm->for_cells("test::pressures", {ng, ng, ng}, m.owned_end(),
+                CellPressures{water, air, spread, alpha});
   Closure c{};
   for (double v : test::gather(m, spread, Centering::Cell)) c.spread = std::max(c.spread, v);
   const auto a = test::gather(m, alpha, Centering::Cell);
