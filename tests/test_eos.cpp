@@ -347,6 +347,23 @@ TEST(Eos, FiniteAtExtremesOfExpansionAndCompression) {
   }
 }
 
+// The test_eos::device_dispatch kernel of DeviceDispatchMatchesHost (a functor: nvcc allows no
+// extended lambda in a TEST body, a private member function): EOS q / (nx ne) at state q.
+struct DeviceDispatch {
+  Kokkos::View<Eos*, mp::MemSpace> eos;
+  Kokkos::View<Real* [2], mp::MemSpace> in;
+  Kokkos::View<Real* [4], mp::MemSpace> out;
+  int nx, ne;
+
+  KOKKOS_INLINE_FUNCTION void operator()(int q) const {
+    const Eos& e = eos(q / (nx * ne));
+    out(q, 0) = e.pressure(in(q, 0), in(q, 1));
+    out(q, 1) = e.pressure_cut(in(q, 0), in(q, 1));
+    out(q, 2) = e.sound_speed2(in(q, 0), in(q, 1));
+    out(q, 3) = e.sound_speed(in(q, 0), in(q, 1));
+  }
+};
+
 // Every EOS of the library and both fixtures, over the extremes test's states, evaluated in a
 // kernel on the default execution space from a View of Eos records, against the same point
 // functions called on the host with the same Real inputs. What it checks: the Eos record reaches
@@ -383,14 +400,8 @@ TEST(Eos, DeviceDispatchMatchesHost) {
   Kokkos::deep_copy(in, in_h);
 
   Kokkos::View<Real* [4], mp::MemSpace> out("out", ns);
-  Kokkos::parallel_for(
-      "test_eos::device_dispatch", Kokkos::RangePolicy<mp::ExecSpace>(0, ns), KOKKOS_LAMBDA(int q) {
-        const Eos& e = eos(q / (nx * ne));
-        out(q, 0) = e.pressure(in(q, 0), in(q, 1));
-        out(q, 1) = e.pressure_cut(in(q, 0), in(q, 1));
-        out(q, 2) = e.sound_speed2(in(q, 0), in(q, 1));
-        out(q, 3) = e.sound_speed(in(q, 0), in(q, 1));
-      });
+  Kokkos::parallel_for("test_eos::device_dispatch", Kokkos::RangePolicy<mp::ExecSpace>(0, ns),
+                       DeviceDispatch{eos, in, out, nx, ne});
   auto out_h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
 
   constexpr bool host_code = std::is_same_v<mp::MemSpace, Kokkos::HostSpace>;

@@ -196,6 +196,26 @@ TEST(StrengthCycle, ElasticPlasticPistonMatchesTheExactSolution) {
   }
 }
 
+namespace {
+
+// The test::rotation kernel of RigidRotationTurnsTheStressAndKeepsItsInvariants (a functor:
+// nvcc allows no extended lambda in a TEST body, a private member function): node velocities
+// of a rigid rotation about z at rate omega.
+struct RigidRotation {
+  Geometry g;
+  double omega;
+  Field3 u, v;
+
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    (void)k;
+    const Real x = g.node_coord(0, i), yy = g.node_coord(1, j);
+    u(i, j, k) = Real(-omega) * yy;
+    v(i, j, k) = Real(omega) * x;
+  }
+};
+
+}  // namespace
+
 // Objectivity: a uniform deviator in a rigid rotation about z (node velocities u = -w y,
 // v = w x, the cell gradient exactly the spin) for a quarter turn through the module's own
 // corrector kernel: the von Mises stress stays to round-off and the tensor turns with the body,
@@ -224,13 +244,7 @@ TEST(StrengthCycle, RigidRotationTurnsTheStressAndKeepsItsInvariants) {
     Kokkos::deep_copy(rho, Real(kRho0));
     Kokkos::deep_copy(e, Real(1e-3));
     const Geometry g = mesh.geometry();
-    Kokkos::parallel_for(
-        "test::rotation", mesh.nodes(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
-          (void)k;
-          const Real x = g.node_coord(0, i), yy = g.node_coord(1, j);
-          u(i, j, k) = Real(-omega) * yy;
-          v(i, j, k) = Real(omega) * x;
-        });
+    Kokkos::parallel_for("test::rotation", mesh.nodes(Region::All), RigidRotation{g, omega, u, v});
     const double dt = (M_PI / 2) / omega / steps;
     for (int s = 0; s < steps; ++s) st.corrector(u, v, w, rho, e, ph, Real(dt));
     const auto sxx = test::gather(mesh, st.stress()[0], Centering::Cell);
