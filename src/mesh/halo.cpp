@@ -237,6 +237,36 @@ void fill(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer
 struct Local {
   Kokkos::Array<AxisPlan, 3> a;
   int ext[3] = {0, 0, 0};
+  // The z points of a column that is owned along x and y and on no wall (most columns): the
+  // ghost layers and wall nodes of z, each with its source and, per field, what point() would
+  // write there (mode 0 nothing, 1 mult x f(source), 2 mult x 0), found once on the host.
+  struct ZPoint {
+    int dst = 0, src = 0;
+    Kokkos::Array<Real, kMaxFields> mult;
+    Kokkos::Array<unsigned char, kMaxFields> mode;
+  };
+  Kokkos::Array<ZPoint, 2 * 2 + 2> zp;  // 2 ng ghost layers and up to 2 wall nodes
+  int nzp = 0;
+  void plan_columns() {
+    static_assert(Mesh::ng == 2, "halo: the z table holds 2 ng + 2 points");
+    const AxisPlan& p = a[2];
+    nzp = 0;
+    auto add = [&](int k) {
+      ZPoint z;
+      bool g2, m2;
+      z.dst = k;
+      z.src = source(2, k, g2, m2);
+      for (int q = 0; q < a[0].n; ++q) {
+        z.mult[q] = m2 ? p.sign[q] : Real(1);
+        z.mode[q] = zeroed(2, z.src, q) ? 2 : (g2 ? 1 : 0);
+      }
+      zp[nzp++] = z;
+    };
+    for (int s = 0; s < 2; ++s)
+      for (int k = p.ghost[s]; k < p.ghost[s] + Mesh::ng; ++k) add(k);
+    for (int s = 0; s < 2; ++s)
+      if (p.zero_wall[s]) add(p.wall[s]);
+  }
   KOKKOS_INLINE_FUNCTION bool ghost(int d, int x, int& s) const {
     s = x < a[d].ghost[0] + Mesh::ng && x >= a[d].ghost[0] ? 0 : 1;
     return (x >= a[d].ghost[0] && x < a[d].ghost[0] + Mesh::ng) ||
@@ -324,10 +354,17 @@ struct Local {
       }
       return;
     }
-    for (int s = 0; s < 2; ++s)
-      for (int k = a[2].ghost[s]; k < a[2].ghost[s] + Mesh::ng; ++k) point(k);
-    for (int s = 0; s < 2; ++s)
-      if (a[2].zero_wall[s]) point(a[2].wall[s]);
+    // owned along x and y, on no wall: the z table (what point() does there, bit for bit)
+    for (int q = 0; q < n; ++q) {
+      const Field3& f = a[0].f[q];
+      for (int t = 0; t < nzp; ++t) {
+        const ZPoint& z = zp[t];
+        if (z.mode[q] == 2)
+          f(i, j, z.dst) = z.mult[q] * Real(0);
+        else if (z.mode[q] == 1)
+          f(i, j, z.dst) = z.mult[q] * f(i, j, z.src);
+      }
+    }
   }
 };
 
@@ -436,6 +473,7 @@ void Halo::exchange(const std::vector<HaloField>& fields) {
       l.ext[d] = mesh_.extent(fields[0].along(d), d);
       bytes_sent_ += self_bytes(l.a[d], int(fields.size()));
     }
+    l.plan_columns();
     Kokkos::parallel_for(
         "halo::fill",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {l.ext[0], l.ext[1]}), l);
