@@ -83,4 +83,22 @@ void reduce_columns(const std::string& name, const int lo[3], const int hi[3], c
 #endif
 }
 
+// The same with a Kokkos reducer (Min, MinLoc ...): body(i, j, k0, k1, acc) joins its points
+// into acc, a Reducer::value_type; the reducer holds the result.
+template <class Body, class Reducer>
+void reduce_columns_with(const std::string& name, const int lo[3], const int hi[3],
+                         const Body& body, const Reducer& reducer) {
+  using V = typename Reducer::value_type;
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+  Kokkos::parallel_reduce(
+      name, Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k, V& acc) { body(i, j, k, k + 1, acc); }, reducer);
+#else
+  const int k0 = lo[2], k1 = hi[2];
+  Kokkos::parallel_reduce(
+      name, Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2> >({lo[0], lo[1]}, {hi[0], hi[1]}),
+      KOKKOS_LAMBDA(int i, int j, V& acc) { body(i, j, k0, k1, acc); }, reducer);
+#endif
+}
+
 }  // namespace mp
