@@ -46,50 +46,96 @@ struct Eos {
   // True below the void density (never when it is off; a negative rho is not void).
   KOKKOS_INLINE_FUNCTION bool is_void(Real rho) const { return rho < rho_void && rho_void > 0; }
 
+  // The pressure and c^2 of kind K with this record's parameters. A kernel over many cells
+  // that dispatches on the kind once (outside its loop) calls these, so its loop has no switch
+  // and can be vectorized; pressure and sound_speed2 are the same functions behind a switch.
+  template <int K>
+  KOKKOS_INLINE_FUNCTION Real pressure_of(Real rho, Real e) const {
+    if constexpr (K == kStiffenedGas)
+      return StiffenedGas{params[0], params[1]}.pressure(rho, e);
+    else if constexpr (K == kMieGruneisen)
+      return mie_gruneisen().pressure(rho, e);
+    else if constexpr (K == kPolynomial)
+      return polynomial().pressure(rho, e);
+    else if constexpr (K == kJwl)
+      return jwl().pressure(rho, e);
+    else
+      return IdealGas{params[0]}.pressure(rho, e);
+  }
+  template <int K>
+  KOKKOS_INLINE_FUNCTION Real sound_speed2_of(Real rho, Real e) const {
+    if constexpr (K == kStiffenedGas)
+      return StiffenedGas{params[0], params[1]}.sound_speed2(rho, e);
+    else if constexpr (K == kMieGruneisen)
+      return mie_gruneisen().sound_speed2(rho, e);
+    else if constexpr (K == kPolynomial)
+      return polynomial().sound_speed2(rho, e);
+    else if constexpr (K == kJwl)
+      return jwl().sound_speed2(rho, e);
+    else
+      return params[0] * (params[0] - 1) * e;  // gamma p / rho
+  }
+
   KOKKOS_INLINE_FUNCTION Real pressure(Real rho, Real e) const {
     switch (kind) {
       case kStiffenedGas:
-        return StiffenedGas{params[0], params[1]}.pressure(rho, e);
+        return pressure_of<kStiffenedGas>(rho, e);
       case kMieGruneisen:
-        return mie_gruneisen().pressure(rho, e);
+        return pressure_of<kMieGruneisen>(rho, e);
       case kPolynomial:
-        return polynomial().pressure(rho, e);
+        return pressure_of<kPolynomial>(rho, e);
       case kJwl:
-        return jwl().pressure(rho, e);
+        return pressure_of<kJwl>(rho, e);
       default:
-        return IdealGas{params[0]}.pressure(rho, e);
+        return pressure_of<kIdealGas>(rho, e);
     }
   }
   // The pressure the hydro uses: the EOS pressure, cut off in tension at p_min. A NaN stays NaN
-  // (the health check must still see a broken EOS state), so no mmax here.
+  // (the health check must still see a broken EOS state), so no mmax here. K: the kind, when
+  // the caller has dispatched on it (-1: this record's kind, through the switch).
+  template <int K = -1>
+  // (Both values found, then one selected: a branch lets GCC sink the loads of e into it and
+  // leave a kernel's loop scalar.)
   KOKKOS_INLINE_FUNCTION Real pressure_cut(Real rho, Real e) const {
-    if (is_void(rho)) return 0;  // (off: a negative rho keeps its p)
-    const Real p = pressure(rho, e);
-    return p < p_min ? p_min : p;
+    Real p;
+    if constexpr (K < 0)
+      p = pressure(rho, e);
+    else
+      p = pressure_of<K>(rho, e);
+    const Real cut = p < p_min ? p_min : p;
+    return is_void(rho) ? Real(0) : cut;  // (off: a negative rho keeps its p)
   }
   bool has_tension_cutoff() const { return p_min > kNoTensionCutoff; }
   // Analytic c^2 = (dp/drho)_e + p/rho^2 (dp/de)_rho, unclamped.
   KOKKOS_INLINE_FUNCTION Real sound_speed2(Real rho, Real e) const {
     switch (kind) {
       case kStiffenedGas:
-        return StiffenedGas{params[0], params[1]}.sound_speed2(rho, e);
+        return sound_speed2_of<kStiffenedGas>(rho, e);
       case kMieGruneisen:
-        return mie_gruneisen().sound_speed2(rho, e);
+        return sound_speed2_of<kMieGruneisen>(rho, e);
       case kPolynomial:
-        return polynomial().sound_speed2(rho, e);
+        return sound_speed2_of<kPolynomial>(rho, e);
       case kJwl:
-        return jwl().sound_speed2(rho, e);
+        return sound_speed2_of<kJwl>(rho, e);
       default:
-        return params[0] * (params[0] - 1) * e;  // gamma p / rho
+        return sound_speed2_of<kIdealGas>(rho, e);
     }
   }
   // c, with c^2 clamped to kSoundSpeed2Floor: finite and positive for every finite (rho > 0, e).
+  template <int K = -1>
   KOKKOS_INLINE_FUNCTION Real sound_speed(Real rho, Real e) const {
-    return msqrt(mmax(sound_speed2(rho, e), kSoundSpeed2Floor));
+    Real c2;
+    if constexpr (K < 0)
+      c2 = sound_speed2(rho, e);
+    else
+      c2 = sound_speed2_of<K>(rho, e);
+    return msqrt(mmax(c2, kSoundSpeed2Floor));
   }
   // The sound speed the hydro uses: that of the floor below the void density, else sound_speed.
+  template <int K = -1>
   KOKKOS_INLINE_FUNCTION Real sound_speed_cut(Real rho, Real e) const {
-    return is_void(rho) ? msqrt(kSoundSpeed2Floor) : sound_speed(rho, e);
+    const Real c = sound_speed<K>(rho, e);
+    return is_void(rho) ? msqrt(kSoundSpeed2Floor) : c;
   }
 
   // The lowest specific energy the health check accepts in a mixed cell. A Mie-Grueneisen

@@ -78,6 +78,104 @@ struct NodeUpdate {
   }
 };
 
+// Every cell's p and c from one EOS, a k-column at a time: the kind dispatched once per column,
+// so the loop over k has no switch and GCC vectorizes it (Eos::pressure_of). The values are
+// Eos::pressure_cut's and sound_speed_cut's, bit for bit.
+template <class A>
+struct EosColumns {
+  A rho, e, p, c;
+  eos::Eos eos;
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const Real r = rho(i, j, k), en = e(i, j, k);
+      p(i, j, k) = eos.template pressure_cut<K>(r, en);
+      c(i, j, k) = eos.template sound_speed_cut<K>(r, en);
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    switch (eos.kind) {
+      case eos::kStiffenedGas:
+        return run<eos::kStiffenedGas>(i, j, k0, k1);
+      case eos::kMieGruneisen:
+        return run<eos::kMieGruneisen>(i, j, k0, k1);
+      case eos::kPolynomial:
+        return run<eos::kPolynomial>(i, j, k0, k1);
+      case eos::kJwl:
+        return run<eos::kJwl>(i, j, k0, k1);
+      default:
+        return run<eos::kIdealGas>(i, j, k0, k1);
+    }
+  }
+};
+template <class A>
+KOKKOS_INLINE_FUNCTION EosColumns<A> eos_columns(const A& rho, const A& e, const A& p, const A& c,
+                                                 const eos::Eos& eos) {
+  return {rho, e, p, c, eos};
+}
+
+// The artificial viscosity of cells (i, j, k0 .. k1 - 1) of a column (hydro::viscosity with
+// Christensen's limiter on the face-averaged jumps; the compression switch of viscosity_with).
+// Branch-free arithmetic on every k (the selects of limited_jump and viscosity), so GCC
+// vectorizes the loop; the values are the per-point form's, bit for bit.
+template <class A>
+struct ViscosityColumns {
+  A u, v, w, rho, c, q;
+  Real rx, ry, rz, cq, cl;
+  KOKKOS_INLINE_FUNCTION Real jump_x(int i, int j, int k) const {
+    return Real(0.25) *
+           (u(i + 1, j, k) + u(i + 1, j + 1, k) + u(i + 1, j, k + 1) + u(i + 1, j + 1, k + 1) -
+            u(i, j, k) - u(i, j + 1, k) - u(i, j, k + 1) - u(i, j + 1, k + 1));
+  }
+  KOKKOS_INLINE_FUNCTION Real jump_y(int i, int j, int k) const {
+    return Real(0.25) *
+           (v(i, j + 1, k) + v(i + 1, j + 1, k) + v(i, j + 1, k + 1) + v(i + 1, j + 1, k + 1) -
+            v(i, j, k) - v(i + 1, j, k) - v(i, j, k + 1) - v(i + 1, j, k + 1));
+  }
+  KOKKOS_INLINE_FUNCTION Real jump_z(int i, int j, int k) const {
+    return Real(0.25) *
+           (w(i, j, k + 1) + w(i + 1, j, k + 1) + w(i, j + 1, k + 1) + w(i + 1, j + 1, k + 1) -
+            w(i, j, k) - w(i + 1, j, k) - w(i, j + 1, k) - w(i + 1, j + 1, k));
+  }
+  // div u of cell (i, j, k) as the compression switch finds it: only where it is not >= 0 is
+  // there viscosity.
+  KOKKOS_INLINE_FUNCTION Real divergence(int i, int j, int k) const {
+    return jump_x(i, j, k) * rx + jump_y(i, j, k) * ry + jump_z(i, j, k) * rz;
+  }
+  // Chunks of a column: where no cell of a chunk compresses (most of a flow), q = 0 without
+  // the limiter's stencil.
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    constexpr int kChunk = 16;
+    for (int kb = k0; kb < k1; kb += kChunk) {
+      const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
+      Real div[kChunk];
+#pragma GCC ivdep
+      for (int k = kb; k < ke; ++k) div[k - kb] = divergence(i, j, k);
+      bool any = false;
+      for (int k = kb; k < ke; ++k) any = any || !(div[k - kb] >= 0);
+      if (any) {
+        full(i, j, kb, ke);
+      } else {
+        for (int k = kb; k < ke; ++k) q(i, j, k) = 0;
+      }
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void full(int i, int j, int k0, int k1) const {
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const Real jx = jump_x(i, j, k), jy = jump_y(i, j, k), jz = jump_z(i, j, k);
+      const bool expands = jx * rx + jy * ry + jz * rz >= 0;  // (divergence(i, j, k))
+      const Real dx = limited_jump(jump_x(i - 1, j, k), jx, jump_x(i + 1, j, k));
+      const Real dy = limited_jump(jump_y(i, j - 1, k), jy, jump_y(i, j + 1, k));
+      const Real dz = limited_jump(jump_z(i, j, k - 1), jz, jump_z(i, j, k + 1));
+      const Real du = -msqrt(dx * dx + dy * dy + dz * dz);
+      const Real qv = hydro::viscosity(rho(i, j, k), c(i, j, k), du, cq, cl);
+      q(i, j, k) = expands ? Real(0) : qv;
+    }
+  }
+};
+
 }  // namespace
 
 Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
@@ -244,54 +342,39 @@ void Hydro::viscosity_with(bool with_eos) {
   auto rho = s_.rho, e = s_.e, p = s_.p, c = s_.c, q = s_.q, u = s_.u, v = s_.v, w = s_.w;
   const auto eos = eos_;
   const Real cq = opt_.q_quadratic, cl = opt_.q_linear;
-  // Velocity jump across cell (i,j,k) along each axis, from the face-averaged node velocities.
-  auto jump_x = [=] KOKKOS_FUNCTION(int i, int j, int k) {
-    return Real(0.25) *
-           (u(i + 1, j, k) + u(i + 1, j + 1, k) + u(i + 1, j, k + 1) + u(i + 1, j + 1, k + 1) -
-            u(i, j, k) - u(i, j + 1, k) - u(i, j, k + 1) - u(i, j + 1, k + 1));
-  };
-  auto jump_y = [=] KOKKOS_FUNCTION(int i, int j, int k) {
-    return Real(0.25) *
-           (v(i, j + 1, k) + v(i + 1, j + 1, k) + v(i, j + 1, k + 1) + v(i + 1, j + 1, k + 1) -
-            v(i, j, k) - v(i + 1, j, k) - v(i, j, k + 1) - v(i + 1, j, k + 1));
-  };
-  auto jump_z = [=] KOKKOS_FUNCTION(int i, int j, int k) {
-    return Real(0.25) *
-           (w(i, j, k + 1) + w(i + 1, j, k + 1) + w(i, j + 1, k + 1) + w(i + 1, j + 1, k + 1) -
-            w(i, j, k) - w(i + 1, j, k) - w(i, j + 1, k) - w(i + 1, j + 1, k));
-  };
-  // Owned cells and one ghost layer (the nodes of the owned region read them); the limiter
-  // reads the neighbours along each axis. The outer ghost layer gets q = 0 in the same launch.
+  // Velocity jump across each cell along each axis from the face-averaged node velocities
+  // (ViscosityColumns), on the owned cells and one ghost layer (the nodes of the owned region
+  // read them); the limiter reads the neighbours along each axis. The outer ghost layer gets
+  // q = 0 in the same launch.
   // Compression switch (Wilkins, J. Comput. Phys. 36:281, 1980): no viscosity where the cell's
   // volume grows (div u >= 0, from the same face-averaged jumps), even if one axis compresses:
   // q > 0 in an expanding cell takes internal energy (q dV > 0) and puts it into the nodes,
   // which drove cold solids and light materials of mixed cells negative (docs/numerics.md).
   // One-dimensional flows are unchanged (the jump along the flow sets both).
+  // `with_eos`: each cell's p and c from the scene's one EOS first, in the same launch (a plain
+  // single-material scene: the viscosity reads only the cell's own c and rho, so the fields are
+  // those of the two launches bit for bit).
+  // (k-columns, core/columns.hpp: a column's EOS, then its viscosity, each a vector loop)
   const Geometry g = mesh_.geometry();
   const int plo = Mesh::ng - 1;
   const int phi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
                       Mesh::ng + mesh_.owned_cells(2) + 1};
   const Real rx = Real(1) / g.dx[0], ry = Real(1) / g.dx[1], rz = Real(1) / g.dx[2];
-  Kokkos::parallel_for(
-      with_eos ? "lagrange::eos_viscosity" : "lagrange::viscosity", mesh_.cells(Region::All),
-      KOKKOS_LAMBDA(int i, int j, int k) {
-        if (with_eos) {
-          p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
-          c(i, j, k) = eos.sound_speed_cut(rho(i, j, k), e(i, j, k));
-        }
-        if (i < plo || j < plo || k < plo || i >= phi[0] || j >= phi[1] || k >= phi[2]) {
-          q(i, j, k) = 0;
-          return;
-        }
-        if (jump_x(i, j, k) * rx + jump_y(i, j, k) * ry + jump_z(i, j, k) * rz >= 0) {
-          q(i, j, k) = 0;
-          return;
-        }
-        const Real dx = limited_jump(jump_x(i - 1, j, k), jump_x(i, j, k), jump_x(i + 1, j, k));
-        const Real dy = limited_jump(jump_y(i, j - 1, k), jump_y(i, j, k), jump_y(i, j + 1, k));
-        const Real dz = limited_jump(jump_z(i, j, k - 1), jump_z(i, j, k), jump_z(i, j, k + 1));
-        const Real du = -msqrt(dx * dx + dy * dy + dz * dz);
-        q(i, j, k) = hydro::viscosity(rho(i, j, k), c(i, j, k), du, cq, cl);
+  int lo[3], hi[3];
+  mesh_.box(Centering::Cell, Region::All, lo, hi);
+  for_columns(
+      with_eos ? "lagrange::eos_viscosity" : "lagrange::viscosity", lo, hi,
+      KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto ra = local(rho), ca = local(c), qa = local(q);
+        if (with_eos) eos_columns(ra, local(e), local(p), ca, eos)(i, j, k0, k1);
+        const bool inside = i >= plo && j >= plo && i < phi[0] && j < phi[1];
+        const int b = inside ? (k0 > plo ? k0 : plo < k1 ? plo : k1) : k1;
+        const int f = inside ? (k1 < phi[2] ? k1 : phi[2] > b ? phi[2] : b) : k1;
+        for (int k = k0; k < b; ++k) qa(i, j, k) = 0;
+        if (b < f)
+          ViscosityColumns<decltype(ra)>{local(u), local(v), local(w), ra, ca, qa,
+                                         rx,       ry,       rz,       cq, cl}(i, j, b, f);
+        for (int k = f; k < k1; ++k) qa(i, j, k) = 0;
       });
 }
 
