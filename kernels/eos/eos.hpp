@@ -4,6 +4,8 @@
 // Units: cm / g / us throughout (kernels/materials/library.hpp): rho g/cm^3, e cm^2/us^2,
 // p Mbar, c cm/us. Validity ranges: see the header of each EOS.
 #pragma once
+#include <type_traits>
+
 #include "core/math.hpp"
 #include "eos/ideal_gas.hpp"
 #include "eos/jwl.hpp"
@@ -159,6 +161,24 @@ struct Eos {
     return Jwl{params[0], params[1], params[2], params[3], params[4], params[5]};
   }
 };
+
+// f(std::integral_constant<int, K>{}) for the kind K = `kind` (host code: a kernel launched per
+// kind, so its loop calls Eos::pressure_of<K> with no switch).
+template <class F>
+void with_kind(int kind, F&& f) {
+  switch (kind) {
+    case kStiffenedGas:
+      return f(std::integral_constant<int, kStiffenedGas>{});
+    case kMieGruneisen:
+      return f(std::integral_constant<int, kMieGruneisen>{});
+    case kPolynomial:
+      return f(std::integral_constant<int, kPolynomial>{});
+    case kJwl:
+      return f(std::integral_constant<int, kJwl>{});
+    default:
+      return f(std::integral_constant<int, kIdealGas>{});
+  }
+}
 
 inline Eos make_eos(const IdealGas& g) {
   Eos e;

@@ -49,21 +49,41 @@ struct NodeUpdate {
                                          const F& V, const F& W, const G& Ub, const G& Vb,
                                          const G& Wb, Real force_sx, Real force_sy, Real force_sz,
                                          int i, int j, int k) const {
-    Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+    Real pt[8], rc[8];
     for (int c = 0; c < 2; ++c)
       for (int b = 0; b < 2; ++b)
         for (int a = 0; a < 2; ++a) {
           const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
-          const Real pt = pha(ci, cj, ck) + qa(ci, cj, ck);
+          pt[a + 2 * b + 4 * c] = pha(ci, cj, ck) + qa(ci, cj, ck);
+          rc[a + 2 * b + 4 * c] = ra(ci, cj, ck);
+        }
+    if (has_strength)
+      apply<true>(pt, rc, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
+    else
+      apply<false>(pt, rc, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
+  }
+  // The same from the node's 8 cells' p + q and densities, corner (a, b, c) at a + 2 b + 4 c;
+  // Strength: the strength forces are added (a template argument: GCC vectorizes no select on
+  // a loop-invariant bool).
+  template <bool Strength, class F, class G>
+  KOKKOS_INLINE_FUNCTION void apply(const Real pt[8], const Real rc[8], const F& U, const F& V,
+                                    const F& W, const G& Ub, const G& Vb, const G& Wb,
+                                    Real force_sx, Real force_sy, Real force_sz, int i, int j,
+                                    int k) const {
+    Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+    for (int c = 0; c < 2; ++c)
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const Real p = pt[a + 2 * b + 4 * c];
           // a cell below the node along an axis pushes it up, a cell above pushes it down
-          fxs += (a == 0 ? pt : -pt);
-          fys += (b == 0 ? pt : -pt);
-          fzs += (c == 0 ? pt : -pt);
-          mass += ra(ci, cj, ck);
+          fxs += (a == 0 ? p : -p);
+          fys += (b == 0 ? p : -p);
+          fzs += (c == 0 ? p : -p);
+          mass += rc[a + 2 * b + 4 * c];
         }
     mass *= Real(0.125) * vol;
     Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
-    if (has_strength) {
+    if constexpr (Strength) {
       force_x += force_sx;
       force_y += force_sy;
       force_z += force_sz;
@@ -75,6 +95,66 @@ struct NodeUpdate {
     U(i, j, k) += dt * ax;
     V(i, j, k) += dt * ay;
     W(i, j, k) += dt * az;
+  }
+};
+
+// The single-material corrector over cells (i, j, kb .. ke - 1) of a column: each cell's six
+// face fluxes (its three low faces stored for the remap), the first remap step's volumes, the
+// full step's energy and density; Check: returns how many Lagrangian volumes are not positive
+// (else 0). A loop with no branch (the high faces of the block's last cells are stored by the
+// caller), which GCC vectorizes.
+template <class A>
+struct CorrectorColumns {
+  A u, v, w, x, y, z, pre, post, rho, e, ph, q;
+  Real vol, cx, cy, cz;
+  StepWeights sw;
+  Real vmin;
+  KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k) const {
+    return cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
+  }
+  template <bool Check>
+  KOKKOS_INLINE_FUNCTION long run(int i, int j, int k0, int k1) const {
+    if constexpr (!Check) {
+      cells(i, j, k0, k1, nullptr);
+      return 0;
+    } else {
+      // chunks: the volume changes kept, then counted in order (a count in the vector loop,
+      // an integer sum of floating-point tests, left it scalar)
+      constexpr int kChunk = 32;
+      Real dvs[kChunk];
+      long bad = 0;
+      for (int kb = k0; kb < k1; kb += kChunk) {
+        const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
+        cells(i, j, kb, ke, dvs);
+        for (int k = kb; k < ke; ++k) bad += !(vmin + dvs[k - kb] > 0) ? 1 : 0;
+      }
+      return bad;
+    }
+  }
+  // dvs (if not null): each cell's volume change, at k - kb
+  KOKKOS_INLINE_FUNCTION void cells(int i, int j, int kb, int ke, Real* dvs) const {
+#pragma GCC ivdep
+    for (int k = kb; k < ke; ++k) {
+      const CellFaceFluxes f = fluxes(i, j, k);
+      x(i, j, k) = f.xl;
+      y(i, j, k) = f.yl;
+      z(i, j, k) = f.zl;
+      step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
+      const Real dv = f.net();
+      const Real mass = rho(i, j, k) * vol;
+      e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
+      rho(i, j, k) = mass / (vol + dv);
+      if (dvs) dvs[k - kb] = dv;
+    }
+  }
+};
+
+// The pressure of an EOS of kind K at (rho, e), for predictor_kernel.
+template <int K>
+struct PressureCut {
+  eos::Eos eos;
+  KOKKOS_INLINE_FUNCTION Real operator()(Real r, Real en, int, int, int) const {
+    return eos.template pressure_cut<K>(r, en);
   }
 };
 
@@ -434,9 +514,11 @@ Health Hydro::lagrange(Real dt, long cycle) {
           return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         });
   } else {
-    predictor_kernel(
-        mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
-        KOKKOS_LAMBDA(Real r, Real en, int, int, int) { return eos.pressure_cut(r, en); });
+    // (the EOS kind dispatched here, so the predictor's loop has no switch: PressureCut)
+    eos::with_kind(eos.kind, [&](auto kind) {
+      predictor_kernel(mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
+                       PressureCut<decltype(kind)::value>{eos});
+    });
   }
   if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
   // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
@@ -464,12 +546,26 @@ Health Hydro::lagrange(Real dt, long cycle) {
     mesh_.box(Centering::Node, Region::Owned, lo, hi);
     for_columns(
         "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-          const auto pha = local(ph), qa = local(q), ra = local(rho);
+          // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c (plain
+          // pointers: through local() accessors GCC left this loop scalar)
+          const Real* pc[4] = {column(ph, i - 1, j - 1), column(ph, i, j - 1), column(ph, i - 1, j),
+                               column(ph, i, j)};
+          const Real* qc[4] = {column(q, i - 1, j - 1), column(q, i, j - 1), column(q, i - 1, j),
+                               column(q, i, j)};
+          const Real* rcol[4] = {column(rho, i - 1, j - 1), column(rho, i, j - 1),
+                                 column(rho, i - 1, j), column(rho, i, j)};
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
 #pragma GCC ivdep
-          for (int k = k0; k < k1; ++k)
-            node_update(pha, qa, ra, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+          for (int k = k0; k < k1; ++k) {
+            Real pt[8], rc[8];
+            for (int c = 0; c < 2; ++c)
+              for (int ab = 0; ab < 4; ++ab) {
+                pt[ab + 4 * c] = pc[ab][k - 1 + c] + qc[ab][k - 1 + c];
+                rc[ab + 4 * c] = rcol[ab][k - 1 + c];
+              }
+            node_update.template apply<false>(pt, rc, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+          }
         });
   }
   halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
@@ -509,28 +605,28 @@ Health Hydro::lagrange(Real dt, long cycle) {
     reduce_columns(
         "lagrange::corrector", lo, hi,
         KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
-          const auto U = local(ub), V = local(vb), W = local(wb), X = local(fx), Y = local(fy),
-                     Z = local(fz), p0 = local(pre), p1 = local(post), ra = local(rho),
-                     ea = local(e), pa = local(ph), qa = local(q);
+          const auto U = local(ub);
+          const CorrectorColumns<decltype(U)> col{
+              U,          local(vb),   local(wb),  local(fx), local(fy), local(fz),
+              local(pre), local(post), local(rho), local(e),  local(ph), local(q),
+              vol,        cx,          cy,         cz,        sw,        vmin};
+          // the Lagrangian volumes are checked in the owned cells only: the column in three
+          // runs, the middle one checked where the column is owned
           const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
-          long bad_here = 0;
-#pragma GCC ivdep
-          for (int k = k0; k < k1; ++k) {
-            const CellFaceFluxes f = cell_face_fluxes(U, V, W, i, j, k, cx, cy, cz);
-            X(i, j, k) = f.xl;
-            Y(i, j, k) = f.yl;
-            Z(i, j, k) = f.zl;
-            if (i == ex - 1) X(i + 1, j, k) = f.xh;
-            if (j == ey - 1) Y(i, j + 1, k) = f.yh;
-            if (k == ez - 1) Z(i, j, k + 1) = f.zh;
-            step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, p0(i, j, k), p1(i, j, k));
-            const Real dv = f.net();
-            const Real mass = ra(i, j, k) * vol;
-            ea(i, j, k) = pdv_energy(ea(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
-            ra(i, j, k) = mass / (vol + dv);
-            bad_here += (col_owned && k >= olo[2] && k < ohi[2] && !(vmin + dv > 0)) ? 1 : 0;
-          }
-          n += bad_here;
+          const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
+          const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
+          col.template run<false>(i, j, k0, b);
+          if (col_owned)
+            n += col.template run<true>(i, j, b, f);
+          else
+            col.template run<false>(i, j, b, f);
+          col.template run<false>(i, j, f, k1);
+          // the high faces at the block's high side
+          if (i == ex - 1)
+            for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
+          if (j == ey - 1)
+            for (int k = k0; k < k1; ++k) col.y(i, j + 1, k) = col.fluxes(i, j, k).yh;
+          if (k1 == ez) col.z(i, j, ez) = col.fluxes(i, j, ez - 1).zh;
         },
         bad);
     volumes_ready_ = true;
