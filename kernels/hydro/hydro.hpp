@@ -116,7 +116,8 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k,
 }
 
 // Sum of a node field over the 8 corners of cell (i, j, k), x fastest.
-KOKKOS_INLINE_FUNCTION Real corner_sum(const Field3& f, int i, int j, int k) {
+template <class F3>
+KOKKOS_INLINE_FUNCTION Real corner_sum(const F3& f, int i, int j, int k) {
   Real sum = 0;
   for (int c = 0; c < 2; ++c)
     for (int b = 0; b < 2; ++b)

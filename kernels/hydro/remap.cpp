@@ -156,6 +156,39 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
       });
 }
 
+// The dual faces (i, j, k0 .. k1 - 1) of a column, normal to D, into F, U, V, W, K. Ord and
+// Weigh (the advection order and the KE fix's weighing) are template arguments: as loop-invariant
+// values they were selects GCC does not vectorize.
+template <int D, class A>
+struct DualFaceColumns {
+  A mf, nm, u, v, w, F, U, V, W, K;
+  template <int Ord, bool Weigh>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const DualFace df = dual_face(mf, nm, u, v, w, i, j, k, D, Ord, Weigh);
+      F(i, j, k) = df.f;
+      U(i, j, k) = df.u;
+      V(i, j, k) = df.v;
+      W(i, j, k) = df.w;
+      K(i, j, k) = df.k;
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1, int ord, bool weigh) const {
+    if (ord == 1) {
+      if (weigh)
+        run<1, true>(i, j, k0, k1);
+      else
+        run<1, false>(i, j, k0, k1);
+    } else {
+      if (weigh)
+        run<2, true>(i, j, k0, k1);
+      else
+        run<2, false>(i, j, k0, k1);
+    }
+  }
+};
+
 template <int D>
 void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const Field3& nm,
                      const Field3& u, const Field3& v, const Field3& w, const Field3& F,
@@ -164,29 +197,72 @@ void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const F
   // (k-columns, core/columns.hpp)
   for_columns(
       "remap::dual_face", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-        const auto mfa = local(mf), nma = local(nm), ua = local(u), va = local(v), wa = local(w);
-        const auto Fa = local(F), Ua = local(U), Va = local(V), Wa = local(W), Ka = local(K);
-#pragma GCC ivdep
-        for (int k = k0; k < k1; ++k) {
-          const DualFace df = dual_face(mfa, nma, ua, va, wa, i, j, k, D, ord, weigh);
-          Fa(i, j, k) = df.f;
-          Ua(i, j, k) = df.u;
-          Va(i, j, k) = df.v;
-          Wa(i, j, k) = df.w;
-          Ka(i, j, k) = df.k;
-        }
+        const auto mfa = local(mf);
+        const DualFaceColumns<D, decltype(mfa)> c{mfa,      local(nm), local(u), local(v),
+                                                  local(w), local(F),  local(U), local(V),
+                                                  local(W), local(K)};
+        c(i, j, k0, k1, ord, weigh);
       });
 }
+
+// A node's new velocities (un, vn, wn) and its kinetic-energy discrepancy (kel) from its remapped
+// mass and momentum (DualUpdate). Multi-material scenes share a node's loss among its 8 cells by
+// their mass (by_mass: kel holds the loss per unit mass of the node's cells, L / (8 m_node));
+// else kel holds the loss, and where the KE fix weighs its shares (weigh) a node that made
+// kinetic energy stores it per unit internal energy of its 8 cells (ke_fix_share; the cell
+// update left each cell's internal energy in `pre`). A is the field type (views, or local()
+// accessors made by at() inside a column); apply's options are template arguments.
+template <class A>
+struct MomentumFinish {
+  A un, vn, wn, kel, pre;
+  bool by_mass, weigh;
+  template <class B>
+  KOKKOS_INLINE_FUNCTION MomentumFinish<B> at(const B&) const {
+    return {local(un), local(vn), local(wn), local(kel), local(pre), by_mass, weigh};
+  }
+  template <bool ByMass, bool Weigh>
+  KOKKOS_INLINE_FUNCTION void apply(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
+                                    const DualUpdate& du) const {
+    const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
+    un(i, j, k) = u1;
+    vn(i, j, k) = v1;
+    wn(i, j, k) = w1;
+    const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
+    const Real ke1 = Real(0.5) * du.m1 * (u1 * u1 + v1 * v1 + w1 * w1);
+    const Real loss = ke0 + du.ke_flux - ke1;
+    if constexpr (ByMass) {
+      const Real per_mass = loss / (8 * du.m1);
+      kel(i, j, k) = du.m1 > 0 ? per_mass : Real(0);
+    } else if constexpr (!Weigh) {
+      kel(i, j, k) = loss;
+    } else {
+      // (the 8 loads whatever the sign: a select, not a branch)
+      const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
+      const Real per_content = loss / content;
+      kel(i, j, k) = loss >= 0 ? loss : content > 0 ? per_content : Real(0);
+    }
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
+                                         const DualUpdate& du) const {
+    if (by_mass)
+      apply<true, false>(i, j, k, m0, u0, v0, w0, du);
+    else if (weigh)
+      apply<false, true>(i, j, k, m0, u0, v0, w0, du);
+    else
+      apply<false, false>(i, j, k, m0, u0, v0, w0, du);
+  }
+};
 
 // Momentum through the dual faces normal to D: every dual face's mass flux and upwind
 // velocities once ("remap::dual_face", lo/hi: both faces of every owned node), then the owned
 // nodes from their two faces ("remap::momentum"; `finish` stores the new velocities and the
 // node's kinetic-energy discrepancy).
-template <int D, class Finish>
+template <int D>
 void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const int nhi[3],
                     const Field3& mf, const Field3& nm, const Field3& u, const Field3& v,
                     const Field3& w, const Field3& F, const Field3& U, const Field3& V,
-                    const Field3& W, const Field3& K, int ord, bool weigh, const Finish& finish) {
+                    const Field3& W, const Field3& K, int ord, bool weigh,
+                    const MomentumFinish<Field3>& finish) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
   // (one launch with the cell update took 10.5 against 8.3 ms per cycle for the two at
   // 64^3, 2 threads: the branch per point costs more than the launch)
@@ -195,15 +271,26 @@ void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const in
       "remap::momentum", nlo, nhi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         const auto ua = local(u), va = local(v), wa = local(w), nma = local(nm);
         const auto Fa = local(F), Ua = local(U), Va = local(V), Wa = local(W), Ka = local(K);
+        const auto fin = finish.at(ua);
+        // the finish's options as template arguments (loop-invariant selects stay scalar)
+        auto run = [&](auto by_mass, auto weighs) {
 #pragma GCC ivdep
-        for (int k = k0; k < k1; ++k) {
-          const Real u0 = ua(i, j, k), v0 = va(i, j, k), w0 = wa(i, j, k), m0 = nma(i, j, k);
-          DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
-          const int li = i - sx, lj = j - sy, lk = k - sz;
-          du.add(Fa(li, lj, lk), Fa(i, j, k), Ua(li, lj, lk), Ua(i, j, k), Va(li, lj, lk),
-                 Va(i, j, k), Wa(li, lj, lk), Wa(i, j, k), Ka(li, lj, lk), Ka(i, j, k));
-          finish(i, j, k, m0, u0, v0, w0, du);
-        }
+          for (int k = k0; k < k1; ++k) {
+            const Real u0 = ua(i, j, k), v0 = va(i, j, k), w0 = wa(i, j, k), m0 = nma(i, j, k);
+            DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
+            const int li = i - sx, lj = j - sy, lk = k - sz;
+            du.add(Fa(li, lj, lk), Fa(i, j, k), Ua(li, lj, lk), Ua(i, j, k), Va(li, lj, lk),
+                   Va(i, j, k), Wa(li, lj, lk), Wa(i, j, k), Ka(li, lj, lk), Ka(i, j, k));
+            fin.template apply<decltype(by_mass)::value, decltype(weighs)::value>(i, j, k, m0, u0,
+                                                                                  v0, w0, du);
+          }
+        };
+        if (finish.by_mass)
+          run(std::true_type{}, std::false_type{});
+        else if (finish.weigh)
+          run(std::false_type{}, std::true_type{});
+        else
+          run(std::false_type{}, std::false_type{});
       });
 }
 
@@ -470,28 +557,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   // jet) is not handed an eighth of the heavy nodes' loss. The 8 cells' masses sum to 8 m_node
   // to round-off (the dual-face fluxes are the cells' own), so total energy is kept.
   const bool by_mass = opt_.ke_fix && mm_ && opt_.ke_fix_by_mass;
-  auto finish = [=] KOKKOS_FUNCTION(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
-                                    const DualUpdate& du) {
-    const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
-    un(i, j, k) = u1;
-    vn(i, j, k) = v1;
-    wn(i, j, k) = w1;
-    const Real ke0 = Real(0.5) * m0 * (u0 * u0 + v0 * v0 + w0 * w0);
-    const Real ke1 = Real(0.5) * du.m1 * (u1 * u1 + v1 * v1 + w1 * w1);
-    const Real loss = ke0 + du.ke_flux - ke1;
-    if (by_mass) {
-      kel(i, j, k) = du.m1 > 0 ? loss / (8 * du.m1) : Real(0);
-      return;
-    }
-    if (!weigh || loss >= 0) {
-      kel(i, j, k) = loss;
-      return;
-    }
-    // made kinetic energy: stored per unit internal energy of the node's 8 cells (ke_fix_share;
-    // the cell update left each cell's internal energy in `pre`)
-    const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
-    kel(i, j, k) = content > 0 ? loss / content : Real(0);
-  };
+  const MomentumFinish<Field3> finish{un, vn, wn, kel, pre, by_mass, weigh};
   if (int(ax + ay + az) == 1) {
     const int d = ax > 0 ? 0 : ay > 0 ? 1 : 2;
     const Field3 mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
