@@ -546,14 +546,14 @@ Health Hydro::lagrange(Real dt, long cycle) {
     mesh_.box(Centering::Node, Region::Owned, lo, hi);
     for_columns(
         "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-          // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c (plain
-          // pointers: through local() accessors GCC left this loop scalar)
-          const Real* pc[4] = {column(ph, i - 1, j - 1), column(ph, i, j - 1), column(ph, i - 1, j),
-                               column(ph, i, j)};
-          const Real* qc[4] = {column(q, i - 1, j - 1), column(q, i, j - 1), column(q, i - 1, j),
-                               column(q, i, j)};
-          const Real* rcol[4] = {column(rho, i - 1, j - 1), column(rho, i, j - 1),
-                                 column(rho, i - 1, j), column(rho, i, j)};
+          // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c
+          using Col = decltype(column(ph, i, j));  // a pointer, or a strided column (GPU)
+          const Col pc[4] = {column(ph, i - 1, j - 1), column(ph, i, j - 1), column(ph, i - 1, j),
+                             column(ph, i, j)};
+          const Col qc[4] = {column(q, i - 1, j - 1), column(q, i, j - 1), column(q, i - 1, j),
+                             column(q, i, j)};
+          const Col rcol[4] = {column(rho, i - 1, j - 1), column(rho, i, j - 1),
+                               column(rho, i - 1, j), column(rho, i, j)};
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
 #pragma GCC ivdep
