@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <climits>
+#include <limits>
 #include <string>
 
 #include "core/columns.hpp"
@@ -176,32 +177,72 @@ Health Hydro::check() const {
             tz = Mesh::ng + mesh_.owned_cells(2);
   const bool several = mm_ != nullptr;
   long first = LONG_MAX;
-  Kokkos::parallel_reduce(
-      "health::check", mesh_.nodes(Region::Owned),
-      KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-        if (i < tx && j < ty && k < tz) {
-          const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
-          // (a multi-material scene's energies are checked per material, against each
-          // material's floor: MaterialState::first_bad)
-          const long what = !(r > 0) || !misfinite(r)                    ? kBadDensity
-                            : (!(en >= 0) && !several) || !misfinite(en) ? kBadEnergy
-                            : !misfinite(pr)                             ? kBadPressure
-                                                                         : kNotBad;
-          if (what >= 0) {
-            const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
-            if (key < acc) acc = key;
-          }
-        }
-        const long what = !misfinite(u(i, j, k))   ? kBadVelocityX
-                          : !misfinite(v(i, j, k)) ? kBadVelocityY
-                          : !misfinite(w(i, j, k)) ? kBadVelocityZ
-                                                   : kNotBad;
-        if (what < 0) return;
-        const int top = (i == tx ? 1 : 0) + (j == ty ? 2 : 0) + (k == tz ? 4 : 0);
-        const long cell =
-            g.global_cell(i == tx ? i - 1 : i, j == ty ? j - 1 : j, k == tz ? k - 1 : k, nx, ny);
-        const long key = (cell * kBadKinds + what) * 8 + top;
+  // (k-columns: a column is screened in chunks by a vector loop, each point's tests as a 0/1
+  // value, and only a chunk with a bad point is walked again by the per-point key below)
+  auto point = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+    if (i < tx && j < ty && k < tz) {
+      const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
+      // (a multi-material scene's energies are checked per material, against each
+      // material's floor: MaterialState::first_bad)
+      const long what = !(r > 0) || !misfinite(r)                    ? kBadDensity
+                        : (!(en >= 0) && !several) || !misfinite(en) ? kBadEnergy
+                        : !misfinite(pr)                             ? kBadPressure
+                                                                     : kNotBad;
+      if (what >= 0) {
+        const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
         if (key < acc) acc = key;
+      }
+    }
+    const long what = !misfinite(u(i, j, k))   ? kBadVelocityX
+                      : !misfinite(v(i, j, k)) ? kBadVelocityY
+                      : !misfinite(w(i, j, k)) ? kBadVelocityZ
+                                               : kNotBad;
+    if (what < 0) return;
+    const int top = (i == tx ? 1 : 0) + (j == ty ? 2 : 0) + (k == tz ? 4 : 0);
+    const long cell =
+        g.global_cell(i == tx ? i - 1 : i, j == ty ? j - 1 : j, k == tz ? k - 1 : k, nx, ny);
+    const long key = (cell * kBadKinds + what) * 8 + top;
+    if (key < acc) acc = key;
+  };
+  int lo[3], hi[3];
+  mesh_.box(Centering::Node, Region::Owned, lo, hi);
+  reduce_columns_with(
+      "health::check", lo, hi,
+      KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& acc) {
+        const auto ra = local(rho), ea = local(e), pa = local(p), ua = local(u), va = local(v),
+                   wa = local(w);
+        const bool cells = i < tx && j < ty;
+        constexpr Real big = std::numeric_limits<Real>::max();
+        // (en >= 0 || several) for every finite en: a NaN fails the finite test anyway
+        const Real emin = several ? -std::numeric_limits<Real>::infinity() : Real(0);
+        constexpr int kChunk = 32;
+        Real bad[kChunk];
+        for (int kb = k0; kb < k1; kb += kChunk) {
+          const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
+          // the last node layer along k is no cell's: its cell values are not read
+          const int kc = cells ? (ke < tz ? ke : tz > kb ? tz : kb) : kb;
+          using MP_KOKKOS_MATH::fabs;
+#pragma GCC ivdep
+          for (int k = kb; k < kc; ++k) {
+            const Real r = ra(i, j, k), en = ea(i, j, k), pr = pa(i, j, k);
+            // misfinite(x) is fabs(x) <= max (false for an infinity and a NaN); the tests
+            // combined with &, not &&, so that no load is conditional
+            const bool ok =
+                (r > 0) & (fabs(r) <= big) & (en >= emin) & (fabs(en) <= big) & (fabs(pr) <= big);
+            bad[k - kb] = ok ? Real(0) : Real(1);
+          }
+          for (int k = kc; k < ke; ++k) bad[k - kb] = 0;
+#pragma GCC ivdep
+          for (int k = kb; k < ke; ++k) {
+            const bool ok = (fabs(ua(i, j, k)) <= big) & (fabs(va(i, j, k)) <= big) &
+                            (fabs(wa(i, j, k)) <= big);
+            bad[k - kb] += ok ? Real(0) : Real(1);
+          }
+          bool any = false;
+          for (int k = kb; k < ke; ++k) any = any || bad[k - kb] > 0;
+          if (any)
+            for (int k = kb; k < ke; ++k) point(i, j, k, acc);
+        }
       },
       Kokkos::Min<long>(first));
   long global_key = LONG_MAX;
