@@ -67,22 +67,6 @@ void for_columns(const std::string& name, const int lo[3], const int hi[3], cons
 #endif
 }
 
-// The same with a sum: body(i, j, k0, k1, acc) adds to acc; result = the sum over the box.
-template <class Body, class T>
-void reduce_columns(const std::string& name, const int lo[3], const int hi[3], const Body& body,
-                    T& result) {
-#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
-  Kokkos::parallel_reduce(
-      name, Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k, T& acc) { body(i, j, k, k + 1, acc); }, result);
-#else
-  const int k0 = lo[2], k1 = hi[2];
-  Kokkos::parallel_reduce(
-      name, Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2> >({lo[0], lo[1]}, {hi[0], hi[1]}),
-      KOKKOS_LAMBDA(int i, int j, T& acc) { body(i, j, k0, k1, acc); }, result);
-#endif
-}
-
 // The same with a Kokkos reducer (Min, MinLoc ...): body(i, j, k0, k1, acc) joins its points
 // into acc, a Reducer::value_type; the reducer holds the result.
 template <class Body, class Reducer>
@@ -99,6 +83,13 @@ void reduce_columns_with(const std::string& name, const int lo[3], const int hi[
       name, Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2> >({lo[0], lo[1]}, {hi[0], hi[1]}),
       KOKKOS_LAMBDA(int i, int j, V& acc) { body(i, j, k0, k1, acc); }, reducer);
 #endif
+}
+
+// The same with a sum: body(i, j, k0, k1, acc) adds to acc; result = the sum over the box.
+template <class Body, class T>
+void reduce_columns(const std::string& name, const int lo[3], const int hi[3], const Body& body,
+                    T& result) {
+  reduce_columns_with(name, lo, hi, body, Kokkos::Sum<T>(result));
 }
 
 }  // namespace mp
