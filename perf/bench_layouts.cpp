@@ -224,7 +224,7 @@ int main(int argc, char** argv) {
          << "\"},\n  \"materials_with_strength\": " << strength << ",\n  \"note\": \"" << note
          << "\",\n  \"runs\": [";
       bool first = true;
-      const char* layouts[2] = {"dense", "compact"};
+      const char* layouts[3] = {"dense", "compact", "single_material"};
       for (int nmat : materials)
         for (int width : widths) {
           // dense, compact, and the single-material reference: the same mesh, flow and step
@@ -259,8 +259,9 @@ int main(int argc, char** argv) {
           const CpuSample c1 = cpu_sample();
           double others = others_share(c0, c1);
           MPI_Allreduce(MPI_IN_PLACE, &others, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-          if (breakdown)
-            for (int l = 0; l < 2; ++l) {
+          if (breakdown)  // (the single-material reference too: what the materials add, kernel
+                          // by kernel, in the JSON)
+            for (int l = 0; l < 3; ++l) {
               LayoutRun& r = run[l];
               Kokkos::fence();
               MPI_Barrier(MPI_COMM_WORLD);
@@ -315,7 +316,7 @@ int main(int argc, char** argv) {
              << ", \"dense_allocated_bytes_per_cell\": " << run[0].alloc_all
              << ", \"compact_allocated_bytes_per_cell\": " << run[1].alloc_all
              << ", \"others_cpu_share\": " << others;
-          for (int l = 0; l < 2; ++l) {
+          for (int l = 0; l < 3; ++l) {
             const LayoutRun& r = run[l];
             js << ",\n     \"" << layouts[l] << "\": {\"blocks_seconds_per_cycle\": [";
             for (std::size_t b = 0; b < r.block.size(); ++b) js << (b ? ", " : "") << r.block[b];

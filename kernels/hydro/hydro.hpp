@@ -24,8 +24,10 @@ constexpr int kMaxCarriers = mat::kMaxMaterials + 1;
 
 // Volume change of cell (i, j, k) in one step: the volumes swept by its six faces (face fluxes
 // stored in node-extent views, face d at index i sitting at node coordinate i along d).
-KOKKOS_INLINE_FUNCTION Real net_volume_flux(const Field3& fx, const Field3& fy, const Field3& fz,
-                                            int i, int j, int k) {
+// (F: a view or a core/columns.hpp local accessor)
+template <class F>
+KOKKOS_INLINE_FUNCTION Real net_volume_flux(const F& fx, const F& fy, const F& fz, int i, int j,
+                                            int k) {
   return fx(i + 1, j, k) - fx(i, j, k) + fy(i, j + 1, k) - fy(i, j, k) + fz(i, j, k + 1) -
          fz(i, j, k);
 }

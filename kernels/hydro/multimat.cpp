@@ -653,24 +653,287 @@ struct MixedKeFix {
   }
 };
 
+// The pure cells of the compact layout as k-columns (issue #15). for_cells runs them through
+// the same functors as the mixed cells, one MDRange point at a time with the EOS kind switched
+// per point; GCC leaves that scalar, and it cost the compact cycle as much as the single-material
+// cycle's whole Lagrange step. The bodies below are those functors' arithmetic for a PureCell,
+// operand for operand (so the fields are the same bits): each cell's material id is read from
+// the column, its EOS record gathered from the MaterialSet, every value computed and then
+// stored only where the cell is pure (a select: the mixed cells keep what they had, and the
+// [mixed] launch after takes them). The EOS kind is a template argument: the scene's one kind,
+// or each column's when its materials differ (a column whose pure cells have several kinds
+// runs the per-point switch, K = -1). An explosive with an unreacted EOS (BurnHook::mixed)
+// keeps the per-point functors.
+
+// body.template run<K>(i, j, k0, k1) with the kind K of the column's pure cells
+template <class Body>
+struct PureColumns {
+  Body body;
+  IntField3 mat;
+  int kinds[kMaxMaterials];
+  int uniform;  // the kind of every material, or -1: look per column
+
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+    body.template run<K>(i, j, k0, k1);
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    int kind = uniform;
+    if (kind < 0) {
+      const auto mt = local(mat);
+      bool one = true;
+      for (int k = k0; k < k1; ++k) {
+        const int m = mt(i, j, k);
+        if (m < 0) continue;
+        if (kind < 0) kind = kinds[m];
+        one = one && kinds[m] == kind;
+      }
+      if (!one) kind = -1;
+    }
+    switch (kind) {
+      case eos::kIdealGas:
+        return run<eos::kIdealGas>(i, j, k0, k1);
+      case eos::kStiffenedGas:
+        return run<eos::kStiffenedGas>(i, j, k0, k1);
+      case eos::kMieGruneisen:
+        return run<eos::kMieGruneisen>(i, j, k0, k1);
+      case eos::kPolynomial:
+        return run<eos::kPolynomial>(i, j, k0, k1);
+      case eos::kJwl:
+        return run<eos::kJwl>(i, j, k0, k1);
+      default:
+        return run<-1>(i, j, k0, k1);
+    }
+  }
+};
+
+// The material of a cell whose id is m (0 for a mixed cell, whose results are not stored).
+KOKKOS_INLINE_FUNCTION int pure_id(int m) {
+  return m < 0 ? 0 : m;
+}
+
+// The materials' EOS records as arrays over the materials, for a column loop: at<K>(m) is
+// material m's record as far as kind K reads it (its parameters, p_min, rho_void), each value
+// a load indexed by m that GCC vectorizes as a gather. (Read from the MaterialSet itself, the
+// records' fields are loads it cannot prove safe to make unconditionally, and the cutoffs'
+// tests became branches: "control flow in loop".)
+struct EosTable {
+  int kind[kMaxMaterials];
+  Real par[eos::Eos::max_params][kMaxMaterials];
+  Real p_min[kMaxMaterials], rho_void[kMaxMaterials];
+
+  explicit EosTable(const mat::MaterialSet& mats) {
+    for (int m = 0; m < kMaxMaterials; ++m) {
+      const eos::Eos& e = mats.eos[m < mats.n ? m : 0];
+      kind[m] = e.kind;
+      for (int q = 0; q < eos::Eos::max_params; ++q) par[q][m] = e.params[q];
+      p_min[m] = e.p_min;
+      rho_void[m] = e.rho_void;
+    }
+  }
+  // the number of parameters kind K reads (all for K = -1, any kind)
+  template <int K>
+  static constexpr int params() {
+    return K == eos::kIdealGas       ? 1
+           : K == eos::kStiffenedGas ? 2
+           : K == eos::kMieGruneisen ? 4
+           : K < 0                   ? eos::Eos::max_params
+                                     : 6;
+  }
+  template <int K>
+  KOKKOS_INLINE_FUNCTION eos::Eos at(int m) const {
+    eos::Eos e;
+    e.kind = K < 0 ? kind[m] : K;
+    for (int q = 0; q < params<K>(); ++q) e.params[q] = par[q][m];
+    e.p_min = p_min[m];
+    e.rho_void = rho_void[m];
+    return e;
+  }
+};
+
+// MixedEos for the pure cells. Burn: the explosive (material bm) scales p by its burn fraction.
+template <bool Burn>
+struct PureEos {
+  EosTable tab;
+  IntField3 mat;
+  Field3 rho, e, p, c, bf;
+  int bm;
+  Real d_cj;
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+    const auto mt = local(mat);
+    const auto r = local(rho), en = local(e), pa = local(p), ca = local(c), f = local(bf);
+    const int b = bm;
+    const Real dcj = d_cj;
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const int m = mt(i, j, k);
+      const eos::Eos eq = tab.template at<K>(pure_id(m));
+      const Real rv = r(i, j, k), ev = en(i, j, k);
+      Real pm = eq.template pressure_cut<K>(rv, ev);
+      Real cm = eq.template sound_speed_cut<K>(rv, ev);
+      if constexpr (Burn) {
+        const Real fv = f(i, j, k);
+        const bool he = m == b;
+        pm = he ? pm * fv : pm;
+        cm = he && fv < 1 ? mmax(cm, dcj) : cm;
+      }
+      const bool pure = m >= 0;
+      const Real p0 = pa(i, j, k), c0 = ca(i, j, k);
+      pa(i, j, k) = select_bits(pure, pm, p0);
+      ca(i, j, k) = select_bits(pure, cm, c0);
+    }
+  }
+};
+
+// MixedPredictor for the pure cells.
+template <bool Burn>
+struct PurePredictor {
+  EosTable tab;
+  IntField3 mat;
+  Field3 u, v, w, rho, e, p, q, ph, bf;
+  Real ax, ay, az, vol;
+  int bm;
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+    const auto mt = local(mat);
+    const auto U = local(u), V = local(v), W = local(w), r = local(rho), en = local(e),
+               pa = local(p), qa = local(q), out = local(ph), f = local(bf);
+    const Real fx = ax, fy = ay, fz = az, v0 = vol;
+    const int b = bm;
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const int m = mt(i, j, k);
+      const Real dv = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz).net();
+      const Real v_half = v0 + dv;
+      const Real mass = r(i, j, k) * v0;
+      const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
+      Real pm = tab.template at<K>(pure_id(m)).template pressure_cut<K>(mass / v_half, e_half);
+      if constexpr (Burn) {
+        const Real fv = f(i, j, k);
+        pm = m == b ? pm * fv : pm;
+      }
+      const Real old = out(i, j, k);
+      out(i, j, k) = select_bits(m >= 0, pm, old);
+    }
+  }
+};
+
+// MixedCorrector for the pure cells (one material: no relaxation, no solid floor; the EOS is
+// not called, so the column runs as K = -1 whatever the kinds).
+struct PureCorrector {
+  IntField3 mat;
+  Field3 q, rho, e, ph, fx, fy, fz;
+  Real vol;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    const auto mt = local(mat);
+    const auto qa = local(q), r = local(rho), en = local(e), pha = local(ph), X = local(fx),
+               Y = local(fy), Z = local(fz);
+    const Real v0 = vol;
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const bool pure = mt(i, j, k) >= 0;
+      const Real dv = net_volume_flux(X, Y, Z, i, j, k);
+      const Real vnew = v0 + dv;
+      const Real r0 = r(i, j, k), e0 = en(i, j, k);
+      const Real mass = r0 * v0;
+      const Real e1 = pdv_energy(e0, pha(i, j, k), qa(i, j, k), dv, mass);
+      en(i, j, k) = select_bits(pure, e1, e0);
+      r(i, j, k) = select_bits(pure, mass / vnew, r0);
+    }
+  }
+};
+
+// MixedKeFix for the pure cells.
+template <bool ByMass>
+struct PureKeFix {
+  IntField3 mat;
+  Field3 kel, rho, e, post;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    const auto mt = local(mat);
+    const auto kl = local(kel), r = local(rho), en = local(e), p1 = local(post);
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const Real sum = corner_sum(kl, i, j, k);
+      Real de;
+      if constexpr (ByMass)
+        de = sum;
+      else
+        de = Real(0.125) * sum / (r(i, j, k) * p1(i, j, k));
+      const Real e0 = en(i, j, k);
+      de = mmax(de, ke_fix_floor(e0));
+      en(i, j, k) = select_bits(mt(i, j, k) >= 0, e0 + de, e0);
+    }
+  }
+};
+
+// The kind of every material of the set, or -1 when they differ.
+int uniform_kind(const mat::MaterialSet& mats) {
+  int kind = mats.n > 0 ? mats.eos[0].kind : -1;
+  for (int m = 1; m < mats.n; ++m)
+    if (mats.eos[m].kind != kind) return -1;
+  return kind;
+}
+
+template <class Body>
+PureColumns<Body> pure_columns(const Body& body, const mat::MaterialSet& mats,
+                               const IntField3& mat) {
+  PureColumns<Body> pc{body, mat, {}, uniform_kind(mats)};
+  for (int m = 0; m < mats.n; ++m) pc.kinds[m] = mats.eos[m].kind;
+  return pc;
+}
+
 }  // namespace
 
 void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
-  auto p = s_.p, c = s_.c, rho = s_.rho;
+  auto p = s_.p, c = s_.c, rho = s_.rho, e = s_.e;
   const BurnHook bh = burn_hook(burn_.get());
-  mm_->for_cells("eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
-                 MixedEos{mats, bh, p, c, rho});
+  const MixedEos op{mats, bh, p, c, rho};
+  const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
+  if (mm_->kind() == mat::LayoutKind::Dense || bh.mixed) {
+    mm_->for_cells("eos::pressure_sound_speed", lo, hi, op);
+    return;
+  }
+  const IntField3 mt = mm_->compact().mat;
+  const bool burn = bh.material >= 0;
+  const Field3 bf = burn ? bh.f : rho;  // (read only with a burn)
+  auto launch = [&](const auto& body) {
+    for_columns("eos::pressure_sound_speed[pure]", lo.data(), hi.data(),
+                pure_columns(body, mats, mt));
+  };
+  if (burn)
+    launch(PureEos<true>{EosTable(mats), mt, rho, e, p, c, bf, bh.material, bh.d_cj});
+  else
+    launch(PureEos<false>{EosTable(mats), mt, rho, e, p, c, bf, bh.material, bh.d_cj});
+  mm_->for_mixed("eos::pressure_sound_speed", lo, hi, op);
 }
 
 void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const auto mats = mats_;
-  auto q = s_.q, ph = s_.p_half, rho = s_.rho;
+  auto q = s_.q, ph = s_.p_half, rho = s_.rho, e = s_.e, p = s_.p;
   auto u = s_.u, v = s_.v, w = s_.w;
   const Real ax = f[0], ay = f[1], az = f[2];
   const BurnHook bh = burn_hook(burn_.get());
-  mm_->for_cells("lagrange::predictor", all_lo(), all_hi(mesh_),
-                 MixedPredictor{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol});
+  const MixedPredictor op{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol};
+  const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
+  if (mm_->kind() == mat::LayoutKind::Dense || bh.mixed) {
+    mm_->for_cells("lagrange::predictor", lo, hi, op);
+    return;
+  }
+  const IntField3 mt = mm_->compact().mat;
+  const bool burn = bh.material >= 0;
+  const Field3 bf = burn ? bh.f : rho;  // (read only with a burn)
+  auto launch = [&](const auto& body) {
+    for_columns("lagrange::predictor[pure]", lo.data(), hi.data(), pure_columns(body, mats, mt));
+  };
+  if (burn)
+    launch(PurePredictor<true>{EosTable(mats), mt, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
+                               bh.material});
+  else
+    launch(PurePredictor<false>{EosTable(mats), mt, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
+                                bh.material});
+  mm_->for_mixed("lagrange::predictor", lo, hi, op);
 }
 
 void Hydro::mm_corrector(Real vol) {
@@ -681,11 +944,17 @@ void Hydro::mm_corrector(Real vol) {
   const Real fmin = opt_.min_fraction;
   const Real sfloor = opt_.solid_floor;
   const BurnHook bh = burn_hook(burn_.get());
-  auto q = s_.q, rho = s_.rho, e = s_.e;
+  auto q = s_.q, rho = s_.rho, e = s_.e, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  mm_->for_cells(
-      "lagrange::corrector", all_lo(), all_hi(mesh_),
-      MixedCorrector{mats, relax, iters, tol, fmin, sfloor, bh, q, rho, e, fx, fy, fz, vol});
+  const MixedCorrector op{mats, relax, iters, tol, fmin, sfloor, bh, q, rho, e, fx, fy, fz, vol};
+  const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
+  if (mm_->kind() == mat::LayoutKind::Dense) {
+    mm_->for_cells("lagrange::corrector", lo, hi, op);
+    return;
+  }
+  for_columns("lagrange::corrector[pure]", lo.data(), hi.data(),
+              PureCorrector{mm_->compact().mat, q, rho, e, ph, fx, fy, fz, vol});
+  mm_->for_mixed("lagrange::corrector", lo, hi, op);
 }
 
 namespace {
@@ -830,7 +1099,19 @@ void Hydro::mm_ke_fix() {
   const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
-  mm_->for_cells("remap::ke_fix", lo, hi, MixedKeFix{kel, rho, e, post, by_mass});
+  const MixedKeFix op{kel, rho, e, post, by_mass};
+  if (mm_->kind() == mat::LayoutKind::Dense) {
+    mm_->for_cells("remap::ke_fix", lo, hi, op);
+    return;
+  }
+  const IntField3 mt = mm_->compact().mat;
+  if (by_mass)
+    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
+                PureKeFix<true>{mt, kel, rho, e, post});
+  else
+    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
+                PureKeFix<false>{mt, kel, rho, e, post});
+  mm_->for_mixed("remap::ke_fix", lo, hi, op);
 }
 
 // Explicit instantiations for the layouts' device handles.

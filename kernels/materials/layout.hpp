@@ -232,6 +232,12 @@ class MaterialState {
   template <class Op>
   void for_cells(const std::string& name, const std::array<int, 3>& lo,
                  const std::array<int, 3>& hi, Op op) const;
+  // for_cells' range over the mixed list alone (compact layout; name + "[mixed]", no launch
+  // when there are no mixed cells), for a kernel that runs its pure cells itself (as k-columns
+  // over the cell arrays, kernels/hydro/multimat.cpp).
+  template <class Op>
+  void for_mixed(const std::string& name, const std::array<int, 3>& lo,
+                 const std::array<int, 3>& hi, Op op) const;
 
   // Sets the content of every cell with src.changed(i,j,k): src.content(i,j,k, alpha, rho, e)
   // fills per-material arrays and returns the count of materials present. Other cells keep
@@ -340,6 +346,15 @@ void MaterialState::for_cells(const std::string& name, const std::array<int, 3>&
         const PureCell c{m, &rho(i, j, k), &e(i, j, k), &p(i, j, k), &ph(i, j, k)};
         op(i, j, k, c);
       });
+  for_mixed(name, lo, hi, op);
+}
+
+template <class Op>
+void MaterialState::for_mixed(const std::string& name, const std::array<int, 3>& lo,
+                              const std::array<int, 3>& hi, Op op) const {
+  if (kind_ != LayoutKind::Compact)
+    throw std::logic_error("MaterialState::for_mixed: dense layout");
+  const CompactDev d = compact_;
   if (d.nmixed == 0) return;
   const int ey = ey_, ez = ez_;
   const int l0 = lo[0], l1 = lo[1], l2 = lo[2], h0 = hi[0], h1 = hi[1], h2 = hi[2];
