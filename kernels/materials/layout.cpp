@@ -107,6 +107,31 @@ struct HaloSource {
     return stored_pure(idx[0], idx[1], idx[2], id, r, en);
   }
   KOKKOS_INLINE_FUNCTION bool stored_pure(int i, int j, int k, int& id, Real& r, Real& en) const;
+  // MaterialState::assign's ghost shell as columns (host backends; layout.hpp, GhostColumns):
+  // after the three sweeps, a cell that took no message along x or y has its content from the
+  // stored cell whose x and y are those of column (i, j) walked back through the two sweeps
+  // (each sweep moves its own coordinate only), (si, sj); false where x or y took a message.
+  static constexpr bool ghost_columns = true;
+  KOKKOS_INLINE_FUNCTION bool source_column(int i, int j, int& si, int& sj) const {
+    if (done != 3) return false;  // (every ghost of the shell changed: the final update)
+    int idx[2] = {i, j};
+    for (int d = 1; d >= 0; --d) {
+      const int s = side_of(d, idx[d]);
+      if (s < 0) continue;
+      if (mode[d][s] == 0) return false;
+      idx[d] = source_index(d, s, idx[d]);
+    }
+    si = idx[0];
+    sj = idx[1];
+    return true;
+  }
+  // ... and its z: k for an owned layer, the source layer of a z ghost that took no message,
+  // -1 for one that did.
+  KOKKOS_INLINE_FUNCTION int source_k(int k) const {
+    const int s = side_of(2, k);
+    if (s < 0) return k;
+    return mode[2][s] == 0 ? -1 : source_index(2, s, k);
+  }
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     int idx[3] = {i, j, k};
     for (int d = done - 1; d >= 0; --d) {

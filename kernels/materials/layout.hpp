@@ -429,6 +429,21 @@ template <class S>
 struct GhostsOnly<S, std::void_t<decltype(S::ghosts_only)>>
     : std::integral_constant<bool, S::ghosts_only> {};
 
+// A ghosts-only source of the three halo sweeps may also give the source of a ghost's content
+// column by column (the message-free case: walls and periodic axes held by one rank):
+//   static constexpr bool ghost_columns = true;
+//   bool source_column(i, j, int& si, int& sj) const;  // false: x or y took a message
+//   int source_k(k) const;                             // -1: z took a message
+// where content(i, j, k) is then exactly the stored content of (si, sj, source_k(k)). The host
+// in-place pass then takes the ghosts that stay the stored pure material of their source as a
+// loop over k (vectorized for the owned layers of a ghost slab's column), without walking the
+// sweeps per cell; the shortcut has_pure describes, the same values.
+template <class S, class = void>
+struct GhostColumns : std::false_type {};
+template <class S>
+struct GhostColumns<S, std::void_t<decltype(S::ghost_columns)>>
+    : std::integral_constant<bool, S::ghost_columns> {};
+
 // Cell r of the ghost shell of an ex x ey x ez block with ng ghost layers: first the two x slabs
 // (whole y, z extent), then the two y slabs of the interior x, then the two z slabs of the
 // interior x and y; k fastest in each.
@@ -595,6 +610,42 @@ void MaterialState::assign(const std::string& name, const Source& src) {
           name + "::in_place", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {ex, ey}),
           KOKKOS_LAMBDA(int i, int j, long& acc) {
             const bool slab = i < ng || i >= ex - ng || j < ng || j >= ey - ng;
+            int si = 0, sj = 0;
+            if constexpr (GhostColumns<Source>::value) {
+              if (src.source_column(i, j, si, sj)) {
+                // a ghost that stays its source's pure material takes the source's values
+                const auto mt = local(old.mat);
+                const auto st = local(stamp);
+                const auto r = local(crho), en = local(ce);
+                auto pure_from = [&](int k, int sk) {
+                  const int m = mt(si, sj, sk);
+                  const bool ok = (m >= 0) & (mt(i, j, k) == m);
+                  const Real r0 = r(i, j, k), e0 = en(i, j, k);
+                  r(i, j, k) = select_bits(ok, r(si, sj, sk), r0);
+                  en(i, j, k) = select_bits(ok, en(si, sj, sk), e0);
+                  st(i, j, k) = ok ? 1 : 0;
+                };
+                for (int k = 0; k < ez; k = (slab || k != ng - 1) ? k + 1 : ez - ng) {
+                  if (k == ng && slab) {  // the owned layers: a column of other cells' values
+                    const int ka = ng, kb = ez - ng;  // (locals: the loop's bounds are known)
+#pragma GCC ivdep
+                    for (int kk = ka; kk < kb; ++kk) pure_from(kk, kk);
+                    for (int kk = ka; kk < kb; ++kk)
+                      if (!st(i, j, kk)) general(i, j, kk, acc);
+                    k = ez - ng - 1;
+                    continue;
+                  }
+                  const int sk = src.source_k(k);
+                  if (sk < 0) {
+                    in_place(i, j, k, acc);
+                    continue;
+                  }
+                  pure_from(k, sk);
+                  if (!st(i, j, k)) general(i, j, k, acc);
+                }
+                return;
+              }
+            }
             for (int k = 0; k < ez; k = (slab || k != ng - 1) ? k + 1 : ez - ng)
               in_place(i, j, k, acc);
           },
