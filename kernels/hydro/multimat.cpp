@@ -343,13 +343,21 @@ struct FaceFluxes {
         }
       };
       Real vm[kMaxMaterials];
-      plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, f, vm);
+      // A face with no volume flux (f == +-0: a flow at rest, or along another axis) moves no
+      // material: onion_volumes clamps every layer to [0, |f|] and gives +0 to each, whatever
+      // the normals, and limit_pair only scales down. The same +0s without the reconstruction
+      // (the normals' 27 cumulative fractions per layer), bit for bit.
+      const bool none = f == 0;
+      if (none)
+        for (int m = 0; m < nmat; ++m) vm[m] = 0;
+      else
+        plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, f, vm);
       // the donor's other face along d: where it empties through it too, the pair takes no
       // more of a material than the donor holds (plic::limit_pair; the normals computed again,
       // as this is rare)
       const int oi = f > 0 ? di : di + sx, oj = f > 0 ? dj : dj + sy, ok = f > 0 ? dk : dk + sz;
       const Real fo = vf(oi, oj, ok);
-      if (f > 0 ? fo < 0 : fo > 0) {
+      if (!none && (f > 0 ? fo < 0 : fo > 0)) {
         Real vo[kMaxMaterials];
         plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, fo, vo);
         plic::limit_pair(nmat, a, pd, vm, vo);
@@ -391,20 +399,39 @@ struct FaceFluxes {
       const auto mt = local(dev.mat);
       const auto v = local(vf), pa = local(pre), ra = local(rho), ea = local(e), mfa = local(mf),
                  efa = local(ef);
+      // (the advection order a template argument: as a loop-invariant select GCC left the loop
+      // scalar, "unsupported use in stmt")
+      auto faces = [&](auto ord) {
+        constexpr int Ord = decltype(ord)::value;
 #pragma GCC ivdep
-      for (int k = k0; k < k1; ++k) {
-        const Real f = v(i, j, k);
-        const bool pos = f > 0;
-        auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
-        const int nm2 = at(mt, -2), nm1 = at(mt, -1), n0 = at(mt, 0), n1 = at(mt, 1);
-        // (pure_of of the up- and downwind cells, for either wind; the donor's own test is the
-        // last loop's)
-        const bool smooth = pos ? (nm2 == nm1) & (n0 == nm1) : (n1 == n0) & (nm1 == n0);
-        Real Mm, Em;
-        column_face_flux(f, at, ra, ea, pa, smooth ? order : 1, Mm, Em);
-        mfa(i, j, k) = Mm;
-        efa(i, j, k) = Em;
-      }
+        for (int k = k0; k < k1; ++k) {
+          const Real f = v(i, j, k);
+          const bool pos = f > 0;
+          auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
+          // (the ids as Real, exact: tests of one width with the wind's, which GCC vectorizes;
+          // int tests beside a Real one it did not, "unsupported use in stmt")
+          const Real nm2 = at(mt, -2), nm1 = at(mt, -1), n0 = at(mt, 0), n1 = at(mt, 1);
+          // (pure_of of the up- and downwind cells, for either wind; the donor's own test is
+          // the last loop's)
+          const bool smooth = pos ? (nm2 == nm1) & (n0 == nm1) : (n1 == n0) & (nm1 == n0);
+          // (both orders found and one selected: a per-face order left the loop scalar; the
+          // first-order values are donor_flux's for order 1, bit for bit)
+          Real Mm, Em;
+          column_face_flux(f, at, ra, ea, pa, Ord, Mm, Em);
+          if constexpr (Ord != 1) {
+            Real M1, E1;
+            column_face_flux(f, at, ra, ea, pa, 1, M1, E1);
+            Mm = smooth ? Mm : M1;
+            Em = smooth ? Em : E1;
+          }
+          mfa(i, j, k) = Mm;
+          efa(i, j, k) = Em;
+        }
+      };
+      if (order == 2)
+        faces(std::integral_constant<int, 2>{});
+      else
+        faces(std::integral_constant<int, 1>{});
       for (int c = 0; c < nc; ++c) {
         const auto cf = local(cflux[c]);
         const unsigned mask = cmask[c];
