@@ -200,26 +200,6 @@ TEST(Launches, CompactUpdatesInPlace) {
   EXPECT_EQ(c.rebuild, 0);
   // sod2's y and z are periodic and held by this one rank: no material message to itself
   EXPECT_EQ(c.matter_pack, 0);
-  // The pure cells' corrector finds the faces, counts the Lagrangian volumes and writes the
-  // first remap step's volumes, as the single-material one does; the first two sweeps' KE fix
-  // writes the next sweep's volumes: no face, volume-check or volume launches of their own.
-  for (const char* gone : {"lagrange::volume_flux_x", "lagrange::volume_flux_y",
-                           "lagrange::volume_flux_z", "lagrange::volume_check", "remap::volumes"})
-    EXPECT_EQ(c.by_name.count(gone), 0u) << gone;
-  EXPECT_EQ(c.by_name.at("lagrange::corrector[pure]"), 1);
-  EXPECT_EQ(c.by_name.at("remap::ke_fix[pure]"), 3);
-}
-
-// The dense layout keeps them: three face launches, the volume check and a volumes launch per
-// sweep.
-TEST(Launches, DenseKeepsFaceLaunches) {
-  if (world_size() != 1) GTEST_SKIP() << "a one-rank count";
-  const Counted c = count_cycle(
-      "sod2.yaml", {"regions.1.hi=[0.53,1,1]", "regions.1.pressure=0.1", "numerics.layout=dense"});
-  for (const char* kept : {"lagrange::volume_flux_x", "lagrange::volume_flux_y",
-                           "lagrange::volume_flux_z", "lagrange::volume_check"})
-    EXPECT_EQ(c.by_name.at(kept), 1) << kept;
-  EXPECT_EQ(c.by_name.at("remap::volumes"), 3);
 }
 
 // Stress sets kept in the compact pool (issue #12; kernels/strength/module.hpp, "Storage"), the

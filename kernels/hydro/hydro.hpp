@@ -323,9 +323,7 @@ class Hydro {
   void mm_cell_update(const Dev& dev, int d);
   void mm_remap_faces(int d);
   void mm_remap_cells(int d);
-  // the KE fix of a multi-material step; compact with a next step (not null): every cell's
-  // volumes of that step written too (returns true)
-  bool mm_ke_fix(const RemapStep* next);
+  void mm_ke_fix();
   // The carriers' densities of a remap step (before the cell update).
   void mm_carriers();
   // After the cell update: a cell its carrier left (through a face, or as a sliver below

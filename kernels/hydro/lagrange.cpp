@@ -103,16 +103,12 @@ struct NodeUpdate {
 // full step's energy and density; Check: returns how many Lagrangian volumes are not positive
 // (else 0). A loop with no branch (the high faces of the block's last cells are stored by the
 // caller), which GCC vectorizes.
-// Masked (the compact layout's pure cells, before its mixed-cell launch): the energy and density
-// are stored only where mt (the material ids) says the cell is pure, a select; the faces and
-// volumes everywhere (the mixed cells' corrector and the remap read them).
-template <class A, class I, bool Masked>
+template <class A>
 struct CorrectorColumns {
   A u, v, w, x, y, z, pre, post, rho, e, ph, q;
   Real vol, cx, cy, cz;
   StepWeights sw;
   Real vmin;
-  I mt;
   KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k) const {
     return cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
   }
@@ -145,56 +141,11 @@ struct CorrectorColumns {
       z(i, j, k) = f.zl;
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
-      const Real r0 = rho(i, j, k), e0 = e(i, j, k);
-      const Real mass = r0 * vol;
-      const Real e1 = pdv_energy(e0, ph(i, j, k), q(i, j, k), dv, mass);
-      const Real r1 = mass / (vol + dv);
-      if constexpr (Masked) {
-        const bool pure = mt(i, j, k) >= 0;
-        e(i, j, k) = select_bits(pure, e1, e0);
-        rho(i, j, k) = select_bits(pure, r1, r0);
-      } else {
-        e(i, j, k) = e1;
-        rho(i, j, k) = r1;
-      }
+      const Real mass = rho(i, j, k) * vol;
+      e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
+      rho(i, j, k) = mass / (vol + dv);
       if (dvs) dvs[k - kb] = dv;
     }
-  }
-};
-
-// The corrector's launch body, a k-column (a functor: it is instantiated masked and not). The
-// Lagrangian volumes are counted in the owned cells only: the column in three runs, the middle
-// one checked where the column is owned; the block's last cells store their high faces.
-template <bool Masked>
-struct CorrectorBody {
-  Field3 ub, vb, wb, fx, fy, fz, pre, post, rho, e, ph, q;
-  IntField3 mat;  // (Masked only)
-  Real vol, cx, cy, cz;
-  StepWeights sw;
-  Real vmin;
-  int olo[3], ohi[3], ex, ey, ez;
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1, long& n) const {
-    const auto U = local(ub);
-    const auto M = local(mat);
-    const CorrectorColumns<decltype(U), decltype(M), Masked> col{
-        U,           local(vb),  local(wb), local(fx), local(fy), local(fz), local(pre),
-        local(post), local(rho), local(e),  local(ph), local(q),  vol,       cx,
-        cy,          cz,         sw,        vmin,      M};
-    const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
-    const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
-    const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
-    col.template run<false>(i, j, k0, b);
-    if (col_owned)
-      n += col.template run<true>(i, j, b, f);
-    else
-      col.template run<false>(i, j, b, f);
-    col.template run<false>(i, j, f, k1);
-    // the high faces at the block's high side
-    if (i == ex - 1)
-      for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
-    if (j == ey - 1)
-      for (int k = k0; k < k1; ++k) col.y(i, j + 1, k) = col.fluxes(i, j, k).yh;
-    if (k1 == ez) col.z(i, j, ez) = col.fluxes(i, j, ez - 1).zh;
   }
 };
 
@@ -224,7 +175,18 @@ struct EosColumns {
     }
   }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
-    eos::run_kind(eos.kind, *this, i, j, k0, k1);
+    switch (eos.kind) {
+      case eos::kStiffenedGas:
+        return run<eos::kStiffenedGas>(i, j, k0, k1);
+      case eos::kMieGruneisen:
+        return run<eos::kMieGruneisen>(i, j, k0, k1);
+      case eos::kPolynomial:
+        return run<eos::kPolynomial>(i, j, k0, k1);
+      case eos::kJwl:
+        return run<eos::kJwl>(i, j, k0, k1);
+      default:
+        return run<eos::kIdealGas>(i, j, k0, k1);
+    }
   }
 };
 template <class A>
@@ -615,51 +577,65 @@ Health Hydro::lagrange(Real dt, long cycle) {
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
   // (A single-material corrector writes the face fluxes itself, for the remap.)
-  // (A compact multi-material corrector does too, in its pure cells' launch.)
-  const bool compact = mm_ && mm_->kind() == mat::LayoutKind::Compact;
-  if (mm_ && !compact) volume_fluxes(ub, vb, wb, dt);
+  if (mm_) volume_fluxes(ub, vb, wb, dt);
   // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
   if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
-  // The Lagrangian volumes must stay positive (owned cells). A single-material cycle and a
-  // compact one count them in the corrector's launch; a dense one in a launch of its own.
+  // The Lagrangian volumes must stay positive (owned cells). A single-material cycle counts
+  // them in the corrector's launch; a multi-material one in a launch of its own.
   const Real vmin = vol;
+  const int olo[3] = {Mesh::ng, Mesh::ng, Mesh::ng};
+  const int ohi[3] = {Mesh::ng + mesh_.owned_cells(0), Mesh::ng + mesh_.owned_cells(1),
+                      Mesh::ng + mesh_.owned_cells(2)};
   long bad = 0;
-  if (mm_ && !compact) {
+  if (mm_) {
     mm_corrector(vol);
   } else {
     // Each cell finds its six face fluxes, stores its three low faces (and the high ones at
     // the block's high side), and writes the cycle's first remap step's volumes: three face
     // launches and the first remap::volumes saved (fields bit for bit: the same arithmetic).
-    // Compact: the pure cells' energy and density (the mixed cells' next, in mm_corrector).
+    const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
+              ez = mesh_.extent(Centering::Cell, 2);
+    const Real cx = cf[0], cy = cf[1], cz = cf[2];
     const RemapStep first = remap_steps(cycle).front();
+    const StepWeights sw = first.weights();
+    auto pre = s_.pre_vol, post = s_.post_vol;
     int lo[3], hi[3];
     mesh_.box(Centering::Cell, Region::All, lo, hi);
-    auto body = [&](auto b) {
-      b.ub = ub, b.vb = vb, b.wb = wb, b.fx = fx, b.fy = fy, b.fz = fz;
-      b.pre = s_.pre_vol, b.post = s_.post_vol, b.rho = rho, b.e = e, b.ph = ph, b.q = q;
-      if (compact) b.mat = mm_->compact().mat;
-      b.vol = vol, b.cx = cf[0], b.cy = cf[1], b.cz = cf[2], b.sw = first.weights(), b.vmin = vmin;
-      for (int a = 0; a < 3; ++a) {
-        b.olo[a] = Mesh::ng;
-        b.ohi[a] = Mesh::ng + mesh_.owned_cells(a);
-      }
-      b.ex = hi[0], b.ey = hi[1], b.ez = hi[2];
-      return b;
-    };
     // (k-columns, core/columns.hpp)
-    if (compact) {
-      reduce_columns("lagrange::corrector[pure]", lo, hi, body(CorrectorBody<true>{}), bad);
-      mm_corrector(vol);  // (its mixed cells)
-    } else {
-      reduce_columns("lagrange::corrector", lo, hi, body(CorrectorBody<false>{}), bad);
-    }
+    reduce_columns(
+        "lagrange::corrector", lo, hi,
+        KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
+          const auto U = local(ub);
+          const CorrectorColumns<decltype(U)> col{
+              U,          local(vb),   local(wb),  local(fx), local(fy), local(fz),
+              local(pre), local(post), local(rho), local(e),  local(ph), local(q),
+              vol,        cx,          cy,         cz,        sw,        vmin};
+          // the Lagrangian volumes are checked in the owned cells only: the column in three
+          // runs, the middle one checked where the column is owned
+          const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
+          const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
+          const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
+          col.template run<false>(i, j, k0, b);
+          if (col_owned)
+            n += col.template run<true>(i, j, b, f);
+          else
+            col.template run<false>(i, j, b, f);
+          col.template run<false>(i, j, f, k1);
+          // the high faces at the block's high side
+          if (i == ex - 1)
+            for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
+          if (j == ey - 1)
+            for (int k = k0; k < k1; ++k) col.y(i, j + 1, k) = col.fluxes(i, j, k).yh;
+          if (k1 == ez) col.z(i, j, ez) = col.fluxes(i, j, ez - 1).zh;
+        },
+        bad);
     volumes_ready_ = true;
     volumes_for_ = first;
   }
   // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
   if (burn_) burn_->update(rho, double(dt));
 
-  if (mm_ && !compact)
+  if (mm_)
     Kokkos::parallel_reduce(
         "lagrange::volume_check", mesh_.cells(Region::Owned),
         KOKKOS_LAMBDA(int i, int j, int k, long& n) {

@@ -700,6 +700,10 @@ struct PureColumns {
   int kinds[kMaxMaterials];
   int uniform;  // the kind of every material, or -1: look per column
 
+  template <int K>
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+    body.template run<K>(i, j, k0, k1);
+  }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     int kind = uniform;
     if (kind < 0) {
@@ -713,7 +717,20 @@ struct PureColumns {
       }
       if (!one) kind = -1;
     }
-    eos::run_kind(kind, body, i, j, k0, k1);
+    switch (kind) {
+      case eos::kIdealGas:
+        return run<eos::kIdealGas>(i, j, k0, k1);
+      case eos::kStiffenedGas:
+        return run<eos::kStiffenedGas>(i, j, k0, k1);
+      case eos::kMieGruneisen:
+        return run<eos::kMieGruneisen>(i, j, k0, k1);
+      case eos::kPolynomial:
+        return run<eos::kPolynomial>(i, j, k0, k1);
+      case eos::kJwl:
+        return run<eos::kJwl>(i, j, k0, k1);
+      default:
+        return run<-1>(i, j, k0, k1);
+    }
   }
 };
 
@@ -829,24 +846,39 @@ struct PurePredictor {
   }
 };
 
-// MixedKeFix for the pure cells; Next: every cell (ghosts and mixed cells too, the launch
-// spanning the block) also gets the next remap step's volumes from the stored face fluxes
-// (stored_step_volumes's arithmetic, after the fix has read this step's post volume), which
-// saves that step's remap::volumes launch. A pure ghost takes a fix too (finite: a ghost node's
-// loss is 0), which the cell exchange that ends the step overwrites, as in the single-material
-// KE fix.
-template <bool ByMass, bool Next>
-struct PureKeFix {
+// MixedCorrector for the pure cells (one material: no relaxation, no solid floor; the EOS is
+// not called, so the column runs as K = -1 whatever the kinds).
+struct PureCorrector {
   IntField3 mat;
-  Field3 kel, rho, e, post, pre, fx, fy, fz;
+  Field3 q, rho, e, ph, fx, fy, fz;
   Real vol;
-  StepWeights nw;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     const auto mt = local(mat);
-    const auto kl = local(kel), r = local(rho), en = local(e), p1 = local(post), p0 = local(pre),
-               X = local(fx), Y = local(fy), Z = local(fz);
+    const auto qa = local(q), r = local(rho), en = local(e), pha = local(ph), X = local(fx),
+               Y = local(fy), Z = local(fz);
     const Real v0 = vol;
-    const StepWeights w = nw;
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const bool pure = mt(i, j, k) >= 0;
+      const Real dv = net_volume_flux(X, Y, Z, i, j, k);
+      const Real vnew = v0 + dv;
+      const Real r0 = r(i, j, k), e0 = en(i, j, k);
+      const Real mass = r0 * v0;
+      const Real e1 = pdv_energy(e0, pha(i, j, k), qa(i, j, k), dv, mass);
+      en(i, j, k) = select_bits(pure, e1, e0);
+      r(i, j, k) = select_bits(pure, mass / vnew, r0);
+    }
+  }
+};
+
+// MixedKeFix for the pure cells.
+template <bool ByMass>
+struct PureKeFix {
+  IntField3 mat;
+  Field3 kel, rho, e, post;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    const auto mt = local(mat);
+    const auto kl = local(kel), r = local(rho), en = local(e), p1 = local(post);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
       const Real sum = corner_sum(kl, i, j, k);
@@ -858,7 +890,6 @@ struct PureKeFix {
       const Real e0 = en(i, j, k);
       de = mmax(de, ke_fix_floor(e0));
       en(i, j, k) = select_bits(mt(i, j, k) >= 0, e0 + de, e0);
-      if constexpr (Next) stored_step_volumes(X, Y, Z, i, j, k, v0, w, p0, p1);
     }
   }
 };
@@ -940,14 +971,17 @@ void Hydro::mm_corrector(Real vol) {
   const Real fmin = opt_.min_fraction;
   const Real sfloor = opt_.solid_floor;
   const BurnHook bh = burn_hook(burn_.get());
-  auto q = s_.q, rho = s_.rho, e = s_.e;
+  auto q = s_.q, rho = s_.rho, e = s_.e, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const MixedCorrector op{mats, relax, iters, tol, fmin, sfloor, bh, q, rho, e, fx, fy, fz, vol};
   const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
-  if (mm_->kind() == mat::LayoutKind::Dense)
+  if (mm_->kind() == mat::LayoutKind::Dense) {
     mm_->for_cells("lagrange::corrector", lo, hi, op);
-  else  // (the pure cells: Hydro::lagrange's corrector launch, before this)
-    mm_->for_mixed("lagrange::corrector", lo, hi, op);
+    return;
+  }
+  for_columns("lagrange::corrector[pure]", lo.data(), hi.data(),
+              PureCorrector{mm_->compact().mat, q, rho, e, ph, fx, fy, fz, vol});
+  mm_->for_mixed("lagrange::corrector", lo, hi, op);
 }
 
 namespace {
@@ -1087,40 +1121,24 @@ Hydro::Carrier Hydro::carrier(int slot) const {
   return {{f, f, f}, carrier_rho_[slot]};
 }
 
-bool Hydro::mm_ke_fix(const RemapStep* next) {
-  auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol, pre = s_.pre_vol;
-  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
+void Hydro::mm_ke_fix() {
+  auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol;
   const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
   const MixedKeFix op{kel, rho, e, post, by_mass};
   if (mm_->kind() == mat::LayoutKind::Dense) {
     mm_->for_cells("remap::ke_fix", lo, hi, op);
-    return false;
+    return;
   }
-  // the mixed cells first: they read this step's post volume, which the pure cells' launch
-  // overwrites with the next step's (a cell's fix reads its own cell only, so the order of the
-  // two launches changes nothing else)
-  mm_->for_mixed("remap::ke_fix", lo, hi, op);
   const IntField3 mt = mm_->compact().mat;
-  const Real vol = mesh_.geometry().cell_volume();
-  const StepWeights nw = next ? next->weights() : StepWeights{};
-  auto launch = [&](auto fix) {
-    fix.mat = mt, fix.kel = kel, fix.rho = rho, fix.e = e, fix.post = post, fix.pre = pre;
-    fix.fx = fx, fix.fy = fy, fix.fz = fz, fix.vol = vol, fix.nw = nw;
-    int l[3], h[3];
-    mesh_.box(Centering::Cell, next ? Region::All : Region::Owned, l, h);
-    for_columns("remap::ke_fix[pure]", l, h, fix);
-  };
-  if (by_mass && next)
-    launch(PureKeFix<true, true>{});
-  else if (by_mass)
-    launch(PureKeFix<true, false>{});
-  else if (next)
-    launch(PureKeFix<false, true>{});
+  if (by_mass)
+    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
+                PureKeFix<true>{mt, kel, rho, e, post});
   else
-    launch(PureKeFix<false, false>{});
-  return next != nullptr;
+    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
+                PureKeFix<false>{mt, kel, rho, e, post});
+  mm_->for_mixed("remap::ke_fix", lo, hi, op);
 }
 
 // Explicit instantiations for the layouts' device handles.

@@ -592,11 +592,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
         });
   }
   if (opt_.ke_fix && mm_) {
-    // (compact with a next step: its pure cells' launch writes the next step's volumes too)
-    if (mm_ke_fix(next)) {
-      volumes_ready_ = true;
-      volumes_for_ = *next;
-    }
+    mm_ke_fix();
   } else if (opt_.ke_fix) {
     // Owned cells read owned nodes only.
     // a column's cells (k-columns, core/columns.hpp): each cell's 8 nodes are the columns
