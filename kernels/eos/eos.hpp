@@ -162,6 +162,26 @@ struct Eos {
   }
 };
 
+// body.template run<K>(args...) for the kind K = `kind` (device code: a column kernel that
+// dispatches once per column; -1, the per-point switch, for any other value).
+template <class Body, class... Args>
+KOKKOS_INLINE_FUNCTION void run_kind(int kind, const Body& body, Args... args) {
+  switch (kind) {
+    case kIdealGas:
+      return body.template run<kIdealGas>(args...);
+    case kStiffenedGas:
+      return body.template run<kStiffenedGas>(args...);
+    case kMieGruneisen:
+      return body.template run<kMieGruneisen>(args...);
+    case kPolynomial:
+      return body.template run<kPolynomial>(args...);
+    case kJwl:
+      return body.template run<kJwl>(args...);
+    default:
+      return body.template run<-1>(args...);
+  }
+}
+
 // f(std::integral_constant<int, K>{}) for the kind K = `kind` (host code: a kernel launched per
 // kind, so its loop calls Eos::pressure_of<K> with no switch).
 template <class F>

@@ -175,18 +175,7 @@ struct EosColumns {
     }
   }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
-    switch (eos.kind) {
-      case eos::kStiffenedGas:
-        return run<eos::kStiffenedGas>(i, j, k0, k1);
-      case eos::kMieGruneisen:
-        return run<eos::kMieGruneisen>(i, j, k0, k1);
-      case eos::kPolynomial:
-        return run<eos::kPolynomial>(i, j, k0, k1);
-      case eos::kJwl:
-        return run<eos::kJwl>(i, j, k0, k1);
-      default:
-        return run<eos::kIdealGas>(i, j, k0, k1);
-    }
+    eos::run_kind(eos.kind, *this, i, j, k0, k1);
   }
 };
 template <class A>

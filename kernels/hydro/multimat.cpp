@@ -700,10 +700,6 @@ struct PureColumns {
   int kinds[kMaxMaterials];
   int uniform;  // the kind of every material, or -1: look per column
 
-  template <int K>
-  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
-    body.template run<K>(i, j, k0, k1);
-  }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     int kind = uniform;
     if (kind < 0) {
@@ -717,20 +713,7 @@ struct PureColumns {
       }
       if (!one) kind = -1;
     }
-    switch (kind) {
-      case eos::kIdealGas:
-        return run<eos::kIdealGas>(i, j, k0, k1);
-      case eos::kStiffenedGas:
-        return run<eos::kStiffenedGas>(i, j, k0, k1);
-      case eos::kMieGruneisen:
-        return run<eos::kMieGruneisen>(i, j, k0, k1);
-      case eos::kPolynomial:
-        return run<eos::kPolynomial>(i, j, k0, k1);
-      case eos::kJwl:
-        return run<eos::kJwl>(i, j, k0, k1);
-      default:
-        return run<-1>(i, j, k0, k1);
-    }
+    eos::run_kind(kind, body, i, j, k0, k1);
   }
 };
 
