@@ -692,18 +692,18 @@ struct MixedKeFix {
 // runs the per-point switch, K = -1). An explosive with an unreacted EOS (BurnHook::mixed)
 // keeps the per-point functors.
 
-// body.template run<K>(i, j, k0, k1) with the kind K of the column's pure cells
+// body.template run<K>(i, j, k0, k1) with the kind K of the column's pure cells (body: a
+// PureEos or PurePredictor, whose material ids and EosTable it reads)
 template <class Body>
 struct PureColumns {
   Body body;
-  IntField3 mat;
-  int kinds[kMaxMaterials];
   int uniform;  // the kind of every material, or -1: look per column
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     int kind = uniform;
     if (kind < 0) {
-      const auto mt = local(mat);
+      const auto mt = local(body.mat);
+      const int* kinds = body.tab.kind;
       bool one = true;
       for (int k = k0; k < k1; ++k) {
         const int m = mt(i, j, k);
@@ -885,12 +885,27 @@ int uniform_kind(const mat::MaterialSet& mats) {
   return kind;
 }
 
-template <class Body>
-PureColumns<Body> pure_columns(const Body& body, const mat::MaterialSet& mats,
-                               const IntField3& mat) {
-  PureColumns<Body> pc{body, mat, {}, uniform_kind(mats)};
-  for (int m = 0; m < mats.n; ++m) pc.kinds[m] = mats.eos[m].kind;
-  return pc;
+// for_cells(name, lo, hi, op), except on the compact layout without an unreacted explosive:
+// there the pure cells as the k-columns of make(std::bool_constant<Burn>{}) (a PureEos or
+// PurePredictor; Burn: the scene has an explosive), launched as name + "[pure]", then the mixed
+// list through op.
+template <class Op, class Make>
+void with_pure_columns(const mat::MaterialState& mm, const mat::MaterialSet& mats,
+                       const BurnHook& bh, const std::string& name, const std::array<int, 3>& lo,
+                       const std::array<int, 3>& hi, const Op& op, const Make& make) {
+  if (mm.kind() == mat::LayoutKind::Dense || bh.mixed) {
+    mm.for_cells(name, lo, hi, op);
+    return;
+  }
+  auto launch = [&](const auto& body) {
+    using Body = std::decay_t<decltype(body)>;
+    for_columns(name + "[pure]", lo.data(), hi.data(), PureColumns<Body>{body, uniform_kind(mats)});
+  };
+  if (bh.material >= 0)
+    launch(make(std::true_type{}));
+  else
+    launch(make(std::false_type{}));
+  mm.for_mixed(name, lo, hi, op);
 }
 
 }  // namespace
@@ -899,24 +914,13 @@ void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
   auto p = s_.p, c = s_.c, rho = s_.rho, e = s_.e;
   const BurnHook bh = burn_hook(burn_.get());
-  const MixedEos op{mats, bh, p, c, rho};
-  const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
-  if (mm_->kind() == mat::LayoutKind::Dense || bh.mixed) {
-    mm_->for_cells("eos::pressure_sound_speed", lo, hi, op);
-    return;
-  }
-  const IntField3 mt = mm_->compact().mat;
-  const bool burn = bh.material >= 0;
-  const Field3 bf = burn ? bh.f : rho;  // (read only with a burn)
-  auto launch = [&](const auto& body) {
-    for_columns("eos::pressure_sound_speed[pure]", lo.data(), hi.data(),
-                pure_columns(body, mats, mt));
-  };
-  if (burn)
-    launch(PureEos<true>{EosTable(mats), mt, rho, e, p, c, bf, bh.material, bh.d_cj});
-  else
-    launch(PureEos<false>{EosTable(mats), mt, rho, e, p, c, bf, bh.material, bh.d_cj});
-  mm_->for_mixed("eos::pressure_sound_speed", lo, hi, op);
+  const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
+  const mat::MaterialState& mm = *mm_;
+  with_pure_columns(mm, mats, bh, "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
+                    MixedEos{mats, bh, p, c, rho}, [&](auto burn) {
+                      return PureEos<decltype(burn)::value>{
+                          EosTable(mats), mm.compact().mat, rho, e, p, c, bf, bh.material, bh.d_cj};
+                    });
 }
 
 void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
@@ -925,25 +929,15 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   auto u = s_.u, v = s_.v, w = s_.w;
   const Real ax = f[0], ay = f[1], az = f[2];
   const BurnHook bh = burn_hook(burn_.get());
-  const MixedPredictor op{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol};
-  const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
-  if (mm_->kind() == mat::LayoutKind::Dense || bh.mixed) {
-    mm_->for_cells("lagrange::predictor", lo, hi, op);
-    return;
-  }
-  const IntField3 mt = mm_->compact().mat;
-  const bool burn = bh.material >= 0;
-  const Field3 bf = burn ? bh.f : rho;  // (read only with a burn)
-  auto launch = [&](const auto& body) {
-    for_columns("lagrange::predictor[pure]", lo.data(), hi.data(), pure_columns(body, mats, mt));
-  };
-  if (burn)
-    launch(PurePredictor<true>{EosTable(mats), mt, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
-                               bh.material});
-  else
-    launch(PurePredictor<false>{EosTable(mats), mt, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
-                                bh.material});
-  mm_->for_mixed("lagrange::predictor", lo, hi, op);
+  const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
+  const mat::MaterialState& mm = *mm_;
+  with_pure_columns(
+      mm, mats, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
+      MixedPredictor{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
+        return PurePredictor<decltype(burn)::value>{
+            EosTable(mats), mm.compact().mat, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
+            bh.material};
+      });
 }
 
 void Hydro::mm_corrector(Real vol) {
