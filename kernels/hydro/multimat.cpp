@@ -684,49 +684,46 @@ struct MixedKeFix {
 // the same functors as the mixed cells, one MDRange point at a time with the EOS kind switched
 // per point; GCC leaves that scalar, and it cost the compact cycle as much as the single-material
 // cycle's whole Lagrange step. The bodies below are those functors' arithmetic for a PureCell,
-// operand for operand (so the fields are the same bits): each cell's material id is read from
-// the column, its EOS record gathered from the MaterialSet, every value computed and then
-// stored only where the cell is pure (a select: the mixed cells keep what they had, and the
-// [mixed] launch after takes them). The EOS kind is a template argument: the scene's one kind,
-// or each column's when its materials differ (a column whose pure cells have several kinds
-// runs the per-point switch, K = -1). An explosive with an unreacted EOS (BurnHook::mixed)
-// keeps the per-point functors.
+// operand for operand (so the fields are the same bits): a column is cut into runs of one pure
+// material (a mixed cell joins the run it is in: its values are computed with the run's
+// material and not stored), each run's EOS record is read once and its kind is a template
+// argument, so the loop over a run is the single-material loop (GCC vectorizes it; gathering
+// the record per cell kept it scalar, 4x the single-material predictor's time); every value
+// is computed and then stored only where the cell is pure (a select: the mixed cells keep
+// what they had, and the [mixed] launch after takes them). An explosive with an unreacted EOS
+// (BurnHook::mixed) keeps the per-point functors.
 
-// body.template run<K>(i, j, k0, k1) with the kind K of the column's pure cells (body: a
-// PureEos or PurePredictor, whose material ids and EosTable it reads)
+// body.template run<K>(i, j, ka, kb, m) for each run [ka, kb) of the column's cells whose pure
+// cells are all material m, of kind K (body: a PureEos or PurePredictor, whose material ids and
+// EosTable it reads). Where materials alternate cell by cell a run is a cell.
 template <class Body>
 struct PureColumns {
   Body body;
-  int uniform;  // the kind of every material, or -1: look per column
 
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
-    int kind = uniform;
-    if (kind < 0) {
-      const auto mt = local(body.mat);
-      const int* kinds = body.tab.kind;
-      bool one = true;
-      for (int k = k0; k < k1; ++k) {
-        const int m = mt(i, j, k);
-        if (m < 0) continue;
-        if (kind < 0) kind = kinds[m];
-        one = one && kinds[m] == kind;
+    const auto mt = local(body.mat);
+    const int* kinds = body.tab.kind;
+    int k = k0;
+    while (k < k1) {
+      int m = mt(i, j, k);
+      if (m < 0) {  // a mixed cell before any pure one: nothing to store
+        ++k;
+        continue;
       }
-      if (!one) kind = -1;
+      int kb = k + 1;
+      while (kb < k1) {
+        const int n = mt(i, j, kb);
+        if (n >= 0 && n != m) break;
+        ++kb;
+      }
+      eos::run_kind(kinds[m], body, i, j, k, kb, m);
+      k = kb;
     }
-    eos::run_kind(kind, body, i, j, k0, k1);
   }
 };
 
-// The material of a cell whose id is m (0 for a mixed cell, whose results are not stored).
-KOKKOS_INLINE_FUNCTION int pure_id(int m) {
-  return m < 0 ? 0 : m;
-}
-
-// The materials' EOS records as arrays over the materials, for a column loop: at<K>(m) is
-// material m's record as far as kind K reads it (its parameters, p_min, rho_void), each value
-// a load indexed by m that GCC vectorizes as a gather. (Read from the MaterialSet itself, the
-// records' fields are loads it cannot prove safe to make unconditionally, and the cutoffs'
-// tests became branches: "control flow in loop".)
+// The materials' EOS records as arrays over the materials: at<K>(m) is material m's record as
+// far as kind K reads it (its parameters, p_min, rho_void), read once per run of a column.
 struct EosTable {
   int kind[kMaxMaterials];
   Real par[eos::Eos::max_params][kMaxMaterials];
@@ -770,21 +767,20 @@ struct PureEos {
   int bm;
   Real d_cj;
   template <int K>
-  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int mr) const {
     const auto mt = local(mat);
     const auto r = local(rho), en = local(e), pa = local(p), ca = local(c), f = local(bf);
-    const int b = bm;
+    const bool he = mr == bm;
     const Real dcj = d_cj;
+    const eos::Eos eq = tab.template at<K>(mr);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
       const int m = mt(i, j, k);
-      const eos::Eos eq = tab.template at<K>(pure_id(m));
       const Real rv = r(i, j, k), ev = en(i, j, k);
       Real pm = eq.template pressure_cut<K>(rv, ev);
       Real cm = eq.template sound_speed_cut<K>(rv, ev);
       if constexpr (Burn) {
         const Real fv = f(i, j, k);
-        const bool he = m == b;
         pm = he ? pm * fv : pm;
         cm = he && fv < 1 ? mmax(cm, dcj) : cm;
       }
@@ -805,12 +801,13 @@ struct PurePredictor {
   Real ax, ay, az, vol;
   int bm;
   template <int K>
-  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int mr) const {
     const auto mt = local(mat);
     const auto U = local(u), V = local(v), W = local(w), r = local(rho), en = local(e),
                pa = local(p), qa = local(q), out = local(ph), f = local(bf);
     const Real fx = ax, fy = ay, fz = az, v0 = vol;
-    const int b = bm;
+    const bool he = mr == bm;
+    const eos::Eos eq = tab.template at<K>(mr);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
       const int m = mt(i, j, k);
@@ -818,10 +815,10 @@ struct PurePredictor {
       const Real v_half = v0 + dv;
       const Real mass = r(i, j, k) * v0;
       const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
-      Real pm = tab.template at<K>(pure_id(m)).template pressure_cut<K>(mass / v_half, e_half);
+      Real pm = eq.template pressure_cut<K>(mass / v_half, e_half);
       if constexpr (Burn) {
         const Real fv = f(i, j, k);
-        pm = m == b ? pm * fv : pm;
+        pm = he ? pm * fv : pm;
       }
       const Real old = out(i, j, k);
       out(i, j, k) = select_bits(m >= 0, pm, old);
@@ -877,29 +874,21 @@ struct PureKeFix {
   }
 };
 
-// The kind of every material of the set, or -1 when they differ.
-int uniform_kind(const mat::MaterialSet& mats) {
-  int kind = mats.n > 0 ? mats.eos[0].kind : -1;
-  for (int m = 1; m < mats.n; ++m)
-    if (mats.eos[m].kind != kind) return -1;
-  return kind;
-}
-
 // for_cells(name, lo, hi, op), except on the compact layout without an unreacted explosive:
 // there the pure cells as the k-columns of make(std::bool_constant<Burn>{}) (a PureEos or
 // PurePredictor; Burn: the scene has an explosive), launched as name + "[pure]", then the mixed
 // list through op.
 template <class Op, class Make>
-void with_pure_columns(const mat::MaterialState& mm, const mat::MaterialSet& mats,
-                       const BurnHook& bh, const std::string& name, const std::array<int, 3>& lo,
-                       const std::array<int, 3>& hi, const Op& op, const Make& make) {
+void with_pure_columns(const mat::MaterialState& mm, const BurnHook& bh, const std::string& name,
+                       const std::array<int, 3>& lo, const std::array<int, 3>& hi, const Op& op,
+                       const Make& make) {
   if (mm.kind() == mat::LayoutKind::Dense || bh.mixed) {
     mm.for_cells(name, lo, hi, op);
     return;
   }
   auto launch = [&](const auto& body) {
     using Body = std::decay_t<decltype(body)>;
-    for_columns(name + "[pure]", lo.data(), hi.data(), PureColumns<Body>{body, uniform_kind(mats)});
+    for_columns(name + "[pure]", lo.data(), hi.data(), PureColumns<Body>{body});
   };
   if (bh.material >= 0)
     launch(make(std::true_type{}));
@@ -916,7 +905,7 @@ void Hydro::mm_equation_of_state() const {
   const BurnHook bh = burn_hook(burn_.get());
   const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
   const mat::MaterialState& mm = *mm_;
-  with_pure_columns(mm, mats, bh, "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
+  with_pure_columns(mm, bh, "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
                     MixedEos{mats, bh, p, c, rho}, [&](auto burn) {
                       return PureEos<decltype(burn)::value>{
                           EosTable(mats), mm.compact().mat, rho, e, p, c, bf, bh.material, bh.d_cj};
@@ -932,7 +921,7 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
   const mat::MaterialState& mm = *mm_;
   with_pure_columns(
-      mm, mats, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
+      mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
       MixedPredictor{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
         return PurePredictor<decltype(burn)::value>{
             EosTable(mats), mm.compact().mat, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
