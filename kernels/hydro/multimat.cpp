@@ -228,7 +228,9 @@ struct RemapSource {
     // A material below the smallest fraction leaves the cell; the largest material takes its
     // mass and energy, so the cell's totals are unchanged (the material's own total changes by
     // at most min_fraction of a cell's mass per removal: 1e-14 keeps it at round-off).
-    Real vsum = 0;
+    // (the largest material's sums in registers: through mass[big] and ener[big] each addition
+    // waited for the last one's store, most of the general path's time with many materials)
+    Real mbig = mass[big], ebig = ener[big];
     for (int m = 0; m < nmat; ++m) {
       if (m == big) continue;
       // A sliver (below 1e-6 of the cell) whose energy went negative by cancellation of nearly
@@ -238,16 +240,19 @@ struct RemapSource {
       // up to 1e-6 of a cell's mass per event, 5.6e-10 of the perforator's mass).
       if (vol[m] < Real(1e-6) * p1 && vol[m] > min_fraction * p1 && mass[m] > 0 &&
           !(ener[m] >= 0)) {
-        ener[big] += ener[m];
+        ebig += ener[m];
         ener[m] = 0;
       }
       const bool present = vol[m] > min_fraction * p1 && mass[m] > 0;
       if (!present) {
-        mass[big] += mass[m];
-        ener[big] += ener[m];
+        mbig += mass[m];
+        ebig += ener[m];
         vol[m] = mass[m] = ener[m] = 0;
       }
     }
+    mass[big] = mbig;
+    ener[big] = ebig;
+    Real vsum = 0;
     for (int m = 0; m < nmat; ++m) vsum += vol[m];
     int n = 0;
     for (int m = 0; m < nmat; ++m) {
