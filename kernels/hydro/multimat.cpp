@@ -192,6 +192,83 @@ struct RemapSource {
     return same & (vol > 0);
   }
 
+  // content() over the materials of the cell and of its two faces' donors alone (compact
+  // layout): entry c of a, r, en is material ids[c], ascending, and the count is returned.
+  // Every other material is absent before and after and adds exact zeros to content()'s sums
+  // (+0: a sum that starts at +0 never becomes -0), so the values are content()'s bit for bit,
+  // without its nmat-long loops (with 16 materials most of the general path's time).
+  static constexpr bool sparse = std::is_same_v<Dev, mat::CompactDev>;
+  KOKKOS_INLINE_FUNCTION int sparse_content(int i, int j, int k, int* ids, Real* a, Real* r,
+                                            Real* en) const {
+    if constexpr (!sparse) {
+      return 0;
+    } else {
+      const int sx = d == 0, sy = d == 1, sz = d == 2;
+      const int fi = i + sx, fj = j + sy, fk = k + sz;
+      const Real flo = vf(i, j, k), fhi = vf(fi, fj, fk);
+      // the donors of the low and high faces, and which of their faces the flux leaves by
+      const int li = flo > 0 ? i - sx : i, lj = flo > 0 ? j - sy : j, lk = flo > 0 ? k - sz : k;
+      const int hi_ = fhi > 0 ? i : fi, hj = fhi > 0 ? j : fj, hk = fhi > 0 ? k : fk;
+      const int lside = flo > 0 ? 1 : 0, hside = fhi > 0 ? 1 : 0;
+      auto materials = [&](int ci, int cj, int ck) {
+        const int id = dev.mat(ci, cj, ck);
+        if (id >= 0) return 1u << id;
+        unsigned mask = 0;
+        const int f = dev.first(ci, cj, ck), n = dev.nm(ci, cj, ck);
+        for (int q = f; q < f + n; ++q) mask |= 1u << dev.smat(q);
+        return mask;
+      };
+      const unsigned mask = materials(i, j, k) | materials(li, lj, lk) | materials(hi_, hj, hk);
+      int pos[kMaxMaterials];  // (written for the materials of the mask only, read for them)
+      int nc = 0;
+      for (int m = 0; (mask >> m) != 0u; ++m)
+        if ((mask >> m) & 1u) {
+          pos[m] = nc;
+          ids[nc++] = m;
+        }
+      Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];
+      for (int c = 0; c < nc; ++c) a[c] = r[c] = en[c] = V[c] = M[c] = E[c] = 0;
+      // the cell's own content (read_cell)
+      {
+        const int id = dev.mat(i, j, k);
+        if (id >= 0) {
+          a[pos[id]] = 1;
+          r[pos[id]] = rho(i, j, k);
+          en[pos[id]] = e(i, j, k);
+        } else {
+          const int f = dev.first(i, j, k), n = dev.nm(i, j, k);
+          for (int q = f; q < f + n; ++q) {
+            const int c = pos[dev.smat(q)];
+            a[c] = dev.salpha(q);
+            r[c] = dev.srho(q);
+            en[c] = dev.se(q);
+          }
+        }
+      }
+      // the two faces (add_face), low face first as in content()
+      auto face = [&](int ffi, int ffj, int ffk, int di, int dj, int dk, int side, Real sign) {
+        const int id = dev.mat(di, dj, dk);
+        if (id >= 0) {
+          V[pos[id]] += sign * vf(ffi, ffj, ffk);
+          M[pos[id]] += sign * mf(ffi, ffj, ffk);
+          E[pos[id]] += sign * ef(ffi, ffj, ffk);
+          return;
+        }
+        const int f = dev.first(di, dj, dk), n = dev.nm(di, dj, dk);
+        for (int q = f; q < f + n; ++q) {
+          const int c = pos[dev.smat(q)];
+          V[c] += sign * dev.sfv[side](q);
+          M[c] += sign * dev.sfm[side](q);
+          E[c] += sign * dev.sfe[side](q);
+        }
+      };
+      face(i, j, k, li, lj, lk, lside, Real(1));
+      face(fi, fj, fk, hi_, hj, hk, hside, Real(-1));
+      finish(nc, pre(i, j, k), post(i, j, k), a, r, en, V, M, E);
+      return nc;
+    }
+  }
+
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     read_donor(dev, rho, e, i, j, k, a, r, en);
     Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];
@@ -213,10 +290,19 @@ struct RemapSource {
       else
         add_face(dev, vf, mf, ef, fi, fj, fk, fi, fj, fk, 0, Real(-1), V, M, E);
     }
-    const Real p0 = pre(i, j, k), p1 = post(i, j, k);
+    return finish(nmat, pre(i, j, k), post(i, j, k), a, r, en, V, M, E);
+  }
+
+  // The rest of content(): entries 0..nm of the cell's content a, r, en (its start-of-sweep
+  // fractions, densities and energies) and of the fluxes V, M, E gained through its faces give
+  // its new content in a, r, en; the count of the entries present is returned. An entry is a
+  // material (content) or one of a list of them in ascending order (sparse_content): the same
+  // operations in the same order on the same values either way.
+  KOKKOS_INLINE_FUNCTION int finish(int nm, Real p0, Real p1, Real* a, Real* r, Real* en,
+                                    const Real* V, const Real* M, const Real* E) const {
     Real vol[kMaxMaterials], mass[kMaxMaterials], ener[kMaxMaterials];
     int big = -1;
-    for (int m = 0; m < nmat; ++m) {
+    for (int m = 0; m < nm; ++m) {
       const Real v0 = a[m] * p0;
       const Real m0 = v0 * r[m];
       vol[m] = v0 + V[m];
@@ -231,7 +317,7 @@ struct RemapSource {
     // (the largest material's sums in registers: through mass[big] and ener[big] each addition
     // waited for the last one's store, most of the general path's time with many materials)
     Real mbig = mass[big], ebig = ener[big];
-    for (int m = 0; m < nmat; ++m) {
+    for (int m = 0; m < nm; ++m) {
       if (m == big) continue;
       // A sliver (below 1e-6 of the cell) whose energy went negative by cancellation of nearly
       // equal fluxes stays, at zero energy: the largest material pays the deficit, so the
@@ -253,9 +339,9 @@ struct RemapSource {
     mass[big] = mbig;
     ener[big] = ebig;
     Real vsum = 0;
-    for (int m = 0; m < nmat; ++m) vsum += vol[m];
+    for (int m = 0; m < nm; ++m) vsum += vol[m];
     int n = 0;
-    for (int m = 0; m < nmat; ++m) {
+    for (int m = 0; m < nm; ++m) {
       if (!(vol[m] > 0)) {
         a[m] = r[m] = en[m] = 0;
         continue;

@@ -392,6 +392,14 @@ template <class S>
 struct InPlace<S, std::void_t<decltype(S::in_place)>> : std::integral_constant<bool, S::in_place> {
 };
 
+// A source whose sparse_content(i, j, k, ids, a, r, en) gives content()'s values for the
+// materials ids[0..nc) (ascending, every material the cell may hold after it among them; nc
+// returned), the others absent: assign's in-place path then loops over those alone.
+template <class S, class = void>
+struct Sparse : std::false_type {};
+template <class S>
+struct Sparse<S, std::void_t<decltype(S::sparse)>> : std::integral_constant<bool, S::sparse> {};
+
 // A source may also offer a shortcut for the commonest case, a cell that stays one material:
 //   static constexpr bool has_pure = true;
 //   bool pure(i, j, k, int& id, Real& rho, Real& e) const;
@@ -536,9 +544,26 @@ void MaterialState::assign(const std::string& name, const Source& src) {
     long moved = 0;
     // a changed cell that the shortcut below did not write
     auto general = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      // the new content as entries c < nc of material ids[c], ascending: every material, or a
+      // Sparse source's list (the materials it may hold; the others absent)
       Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
-      int id = 0;
-      const int n = new_content(src, i, j, k, nmat, a, r, en, id);
+      int ids[kMaxMaterials];
+      int nc = nmat;
+      if constexpr (Sparse<Source>::value) {
+        nc = src.sparse_content(i, j, k, ids, a, r, en);
+      } else {
+        for (int m = 0; m < nmat; ++m) {
+          ids[m] = m;
+          a[m] = r[m] = en[m] = 0;
+        }
+        src.content(i, j, k, a, r, en);
+      }
+      int n = 0, id = 0;
+      for (int c = 0; c < nc; ++c)
+        if (a[c] > 0) {
+          ++n;
+          id = ids[c];
+        }
       // The same materials in the same slots: a neighbour's content may read this cell's
       // layout (the remap reads the donor's material ids to split its face fluxes), so only
       // values change here, never which material a pure cell or a slot holds.
@@ -548,16 +573,16 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         same = om == id;  // (id 0 for an empty cell, as the rebuild stores it)
       } else if (same) {
         int q = old.first(i, j, k);
-        for (int m = 0; m < nmat && same; ++m)
-          if (a[m] > 0) same = old.smat(q++) == m;
+        for (int c = 0; c < nc && same; ++c)
+          if (a[c] > 0) same = old.smat(q++) == ids[c];
       }
       if (same && om < 0) {
         int q = old.first(i, j, k);
-        for (int m = 0; m < nmat; ++m) {
-          if (!(a[m] > 0)) continue;
-          old.salpha(q) = a[m];
-          old.srho(q) = r[m];
-          old.se(q) = en[m];
+        for (int c = 0; c < nc; ++c) {
+          if (!(a[c] > 0)) continue;
+          old.salpha(q) = a[c];
+          old.srho(q) = r[c];
+          old.se(q) = en[c];
           old.sp(q) = 0;
           ++q;
         }
@@ -566,7 +591,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
         ++acc;  // the layout changes here: left to the rebuild
         return;
       }
-      cell_average(nmat, a, r, en, crho(i, j, k), ce(i, j, k));
+      cell_average(nc, a, r, en, crho(i, j, k), ce(i, j, k));
       stamp(i, j, k) = 1;
     };
     auto in_place = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
