@@ -132,6 +132,64 @@ struct HaloSource {
     if (s < 0) return k;
     return mode[2][s] == 0 ? -1 : source_index(2, s, k);
   }
+  // content() as entries c < (the count returned) of material ids[c], ascending: the materials
+  // the ghost's content holds, not all nmat (compact layout; MaterialState::assign, Sparse)
+  static constexpr bool sparse = std::is_same_v<Dev, CompactDev>;
+  KOKKOS_INLINE_FUNCTION int sparse_content(int i, int j, int k, int* ids, Real* a, Real* r,
+                                            Real* en) const {
+    int idx[3] = {i, j, k};
+    for (int d = done - 1; d >= 0; --d) {
+      const int x = idx[d];
+      const int s = side_of(d, x);
+      if (s < 0) continue;
+      if (mode[d][s] == 0) {
+        const long cell = received_cell(d, s, idx);
+        const Buffer& b = recv[d][s];
+        const Real a0 = b(cell * 3);
+        if (a0 < 0) {
+          ids[0] = int(-a0) - 1;
+          a[0] = 1;
+          r[0] = b(cell * 3 + 1);
+          en[0] = b(cell * 3 + 2);
+          return 1;
+        }
+        const int mask = int(a0);
+        long o = 3 * slab_cells(d) + long(b(cell * 3 + 1)) * kSplit + long(b(cell * 3 + 2));
+        int c = 0;
+        for (int m = 0; (mask >> m) != 0; ++m) {
+          if (!((mask >> m) & 1)) continue;
+          ids[c] = m;
+          a[c] = b(o);
+          r[c] = b(o + 1);
+          en[c] = b(o + 2);
+          o += 3;
+          ++c;
+        }
+        return c;
+      }
+      idx[d] = source_index(d, s, x);
+    }
+    if constexpr (sparse) {
+      const int m = dev.mat(idx[0], idx[1], idx[2]);
+      if (m >= 0) {
+        ids[0] = m;
+        a[0] = 1;
+        r[0] = rho(idx[0], idx[1], idx[2]);
+        en[0] = e(idx[0], idx[1], idx[2]);
+        return 1;
+      }
+      const int f = dev.first(idx[0], idx[1], idx[2]), n = dev.nm(idx[0], idx[1], idx[2]);
+      for (int c = 0; c < n; ++c) {
+        ids[c] = dev.smat(f + c);
+        a[c] = dev.salpha(f + c);
+        r[c] = dev.srho(f + c);
+        en[c] = dev.se(f + c);
+      }
+      return n;
+    } else {
+      return 0;
+    }
+  }
   KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
     int idx[3] = {i, j, k};
     for (int d = done - 1; d >= 0; --d) {
