@@ -385,6 +385,69 @@ struct FaceFluxes {
   unsigned cmask[kMaxCarriers];
   Field3 cflux[kMaxCarriers];
 
+  // A mixed donor's face: the volume, mass and energy each material takes through it, into
+  // V, M, E, and their sums into mf, ef. Entries c < nm are materials mat_of(c) in ascending
+  // order (every material, or the donor's slots), with fractions a, densities r and energies
+  // en; count of them are present.
+  template <class MatOf>
+  KOKKOS_INLINE_FUNCTION void mixed_face(int i, int j, int k, int di, int dj, int dk, Real f,
+                                         int nm, int count, const MatOf& mat_of, const Real* a,
+                                         const Real* r, const Real* en, Real* V, Real* M,
+                                         Real* E) const {
+    const int sx = d == 0, sy = d == 1, sz = d == 2;
+    const Real pd = pre(di, dj, dk);
+    // Onion skin (plic::onion_volumes): the plane normal of each layer but the last (which
+    // takes what is left), from the cumulative fractions around the donor
+    auto normal = [&](int entry, Real* n) {
+      const int m = mat_of(entry);
+      n[0] = n[1] = n[2] = 0;
+      if (iface == 0) {
+        Real st3[3][3][3];
+        for (int c = 0; c < 3; ++c)
+          for (int b = 0; b < 3; ++b)
+            for (int q = 0; q < 3; ++q)
+              st3[q][b][c] = mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
+        plic::youngs_normal(st3, dx, dy, dz, n);
+      } else if (iface == 1) {
+        const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
+                       mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
+        n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
+      }
+    };
+    Real vm[kMaxMaterials];
+    // A face with no volume flux (f == +-0: a flow at rest, or along another axis) moves no
+    // material: onion_volumes clamps every layer to [0, |f|] and gives +0 to each, whatever
+    // the normals, and limit_pair only scales down. The same +0s without the reconstruction
+    // (the normals' 27 cumulative fractions per layer), bit for bit.
+    const bool none = f == 0;
+    if (none)
+      for (int m = 0; m < nm; ++m) vm[m] = 0;
+    else
+      plic::onion_volumes(nm, count, a, normal, pd, dx, dy, dz, d, f, vm);
+    // the donor's other face along d: where it empties through it too, the pair takes no
+    // more of a material than the donor holds (plic::limit_pair; the normals computed again,
+    // as this is rare)
+    const int oi = f > 0 ? di : di + sx, oj = f > 0 ? dj : dj + sy, ok = f > 0 ? dk : dk + sz;
+    const Real fo = vf(oi, oj, ok);
+    if (!none && (f > 0 ? fo < 0 : fo > 0)) {
+      Real vo[kMaxMaterials];
+      plic::onion_volumes(nm, count, a, normal, pd, dx, dy, dz, d, fo, vo);
+      plic::limit_pair(nm, a, pd, vm, vo);
+    }
+    Real mtot = 0, etot = 0;
+    for (int m = 0; m < nm; ++m) {
+      if (!(a[m] > 0)) continue;
+      const Real sv = f > 0 ? vm[m] : -vm[m];
+      V[m] = sv;
+      M[m] = sv * r[m];
+      E[m] = M[m] * en[m];
+      mtot += M[m];
+      etot += E[m];
+    }
+    mf(i, j, k) = mtot;
+    ef(i, j, k) = etot;
+  }
+
   // (force-inlined: past GCC's size limits the loop called it once per face; inlined, the
   // compact layout's remap::material_flux takes about 10 % less, 1.23 -> 1.08 ms per cycle on
   // the layout study's 2-material, 1 %-mixed block, 1.63 -> 1.50 at 5 %)
@@ -412,6 +475,32 @@ struct FaceFluxes {
           cflux[c](i, j, k) = ((cmask[c] >> m0) & 1u) ? Real(0) + Mm : Real(0);
         return;
       }
+      // A mixed donor: the branch below over its slots (its materials, ascending) as entries,
+      // without nmat-long arrays; the same operations on the same values in the same order
+      // (an absent material's zeros add +0 to the carriers' sums there).
+      const int q0 = dev.first(di, dj, dk), cnt = dev.nm(di, dj, dk);
+      Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
+      Real V[kMaxMaterials], M[kMaxMaterials], E[kMaxMaterials];
+      for (int c = 0; c < cnt; ++c) {
+        a[c] = dev.salpha(q0 + c);
+        r[c] = dev.srho(q0 + c);
+        en[c] = dev.se(q0 + c);
+        V[c] = M[c] = E[c] = 0;
+      }
+      const auto slot_mat = [&](int c) { return int(dev.smat(q0 + c)); };
+      mixed_face(i, j, k, di, dj, dk, f, cnt, cnt, slot_mat, a, r, en, V, M, E);
+      for (int c = 0; c < cnt; ++c) {
+        dev.sfv[side](q0 + c) = V[c];
+        dev.sfm[side](q0 + c) = M[c];
+        dev.sfe[side](q0 + c) = E[c];
+      }
+      for (int x = 0; x < nc; ++x) {
+        Real sum = 0;
+        for (int c = 0; c < cnt; ++c)
+          if ((cmask[x] >> slot_mat(c)) & 1u) sum += M[c];
+        cflux[x](i, j, k) = sum;
+      }
+      return;
     }
     Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
     const int count = read_donor(dev, rho, e, di, dj, dk, a, r, en);
@@ -429,55 +518,8 @@ struct FaceFluxes {
       mf(i, j, k) = M[m0];
       ef(i, j, k) = E[m0];
     } else {
-      // Onion skin (plic::onion_volumes): the plane normal of each layer but the last (which
-      // takes what is left), from the cumulative fractions around the donor
-      auto normal = [&](int m, Real* n) {
-        n[0] = n[1] = n[2] = 0;
-        if (iface == 0) {
-          Real st3[3][3][3];
-          for (int c = 0; c < 3; ++c)
-            for (int b = 0; b < 3; ++b)
-              for (int q = 0; q < 3; ++q)
-                st3[q][b][c] = mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
-          plic::youngs_normal(st3, dx, dy, dz, n);
-        } else if (iface == 1) {
-          const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
-                         mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
-          n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);
-        }
-      };
-      Real vm[kMaxMaterials];
-      // A face with no volume flux (f == +-0: a flow at rest, or along another axis) moves no
-      // material: onion_volumes clamps every layer to [0, |f|] and gives +0 to each, whatever
-      // the normals, and limit_pair only scales down. The same +0s without the reconstruction
-      // (the normals' 27 cumulative fractions per layer), bit for bit.
-      const bool none = f == 0;
-      if (none)
-        for (int m = 0; m < nmat; ++m) vm[m] = 0;
-      else
-        plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, f, vm);
-      // the donor's other face along d: where it empties through it too, the pair takes no
-      // more of a material than the donor holds (plic::limit_pair; the normals computed again,
-      // as this is rare)
-      const int oi = f > 0 ? di : di + sx, oj = f > 0 ? dj : dj + sy, ok = f > 0 ? dk : dk + sz;
-      const Real fo = vf(oi, oj, ok);
-      if (!none && (f > 0 ? fo < 0 : fo > 0)) {
-        Real vo[kMaxMaterials];
-        plic::onion_volumes(nmat, count, a, normal, pd, dx, dy, dz, d, fo, vo);
-        plic::limit_pair(nmat, a, pd, vm, vo);
-      }
-      Real mtot = 0, etot = 0;
-      for (int m = 0; m < nmat; ++m) {
-        if (!(a[m] > 0)) continue;
-        const Real sv = f > 0 ? vm[m] : -vm[m];
-        V[m] = sv;
-        M[m] = sv * r[m];
-        E[m] = M[m] * en[m];
-        mtot += M[m];
-        etot += E[m];
-      }
-      mf(i, j, k) = mtot;
-      ef(i, j, k) = etot;
+      mixed_face(
+          i, j, k, di, dj, dk, f, nmat, count, [](int m) { return m; }, a, r, en, V, M, E);
     }
     store_face(dev, i, j, k, di, dj, dk, side, V, M, E);
     for (int c = 0; c < nc; ++c) {
