@@ -181,6 +181,7 @@ int main(int argc, char** argv) {
   {
     CLI::App app{"minipagosa dense vs compact material layout benchmark"};
     std::vector<int> materials{2, 4, 8, 16}, widths{100, 20, 5, 2}, cells{200, 16, 16};
+    std::vector<double> velocity{0.3, 0, 0};
     int cycles = 4, repeats = 5, warmup = 3, strength = 0;
     bool no_breakdown = false;
     std::string json, note;
@@ -196,6 +197,11 @@ int main(int argc, char** argv) {
     app.add_option("--strength", strength,
                    "the first N materials have elastic-plastic strength (the strength module "
                    "in mixed cells; 0: none)");
+    app.add_option("--velocity", velocity,
+                   "the flow's velocity u,v,w (default 0.3,0,0: along x, across the stripes; "
+                   "a transverse part makes the y and z sweeps move material too)")
+        ->delimiter(',')
+        ->expected(3);
     app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");
     app.add_option("--json", json, "write results as JSON here");
     app.add_option("--note", note, "a line about the run conditions, printed and kept in the JSON");
@@ -221,8 +227,9 @@ int main(int argc, char** argv) {
             "rotate "
             "block by block\", \"breakdown\": \""
          << (breakdown ? "separate block, Kokkos::fence before and after every kernel" : "off")
-         << "\"},\n  \"materials_with_strength\": " << strength << ",\n  \"note\": \"" << note
-         << "\",\n  \"runs\": [";
+         << "\"},\n  \"materials_with_strength\": " << strength << ",\n  \"velocity\": ["
+         << velocity[0] << ", " << velocity[1] << ", " << velocity[2] << "],\n  \"note\": \""
+         << note << "\",\n  \"runs\": [";
       bool first = true;
       const char* layouts[3] = {"dense", "compact", "single_material"};
       for (int nmat : materials)
@@ -234,10 +241,11 @@ int main(int argc, char** argv) {
           for (int l = 0; l < 3; ++l) {
             // the allocations this layout's run makes and keeps through set-up and warm-up
             perf::AllocationTracker mem;
-            const Scene scene = read_scene(Deck::parse(
-                l < 2 ? stripes_deck(nmat, width, cells, layouts[l], std::min(strength, nmat))
-                      : stripes_deck(1, width, cells, "compact", 0),
-                "layouts.yaml"));
+            const Scene scene = read_scene(
+                Deck::parse(l < 2 ? stripes_deck(nmat, width, cells, layouts[l],
+                                                 std::min(strength, nmat), velocity)
+                                  : stripes_deck(1, width, cells, "compact", 0, velocity),
+                            "layouts.yaml"));
             RunSettings settings;
             settings.quiet = true;
             run[l].sim = std::make_unique<Simulation>(scene, MPI_COMM_WORLD, settings);
@@ -385,6 +393,7 @@ int main(int argc, char** argv) {
             st.triad_gbs, ExecSpace::name(), ExecSpace().concurrency(), nranks, cells[0], cells[1],
             cells[2], warmup, repeats, cycles);
         if (!note.empty()) std::printf("%s\n", note.c_str());
+        std::printf("flow velocity (%g, %g, %g)\n", velocity[0], velocity[1], velocity[2]);
         if (strength > 0)
           std::printf("materials with strength (elastic-plastic): the first %d of each scene\n",
                       strength);

@@ -70,7 +70,8 @@ inline double others_share(const CpuSample& a, const CpuSample& b) {
 // deck's units, about the gases' pressure: every stripe of them yields as it is sheared), so
 // the layout study can time the strength module in mixed cells.
 inline std::string stripes_deck(int nmat, int width, const std::vector<int>& cells,
-                                const char* layout, int strength = 0) {
+                                const char* layout, int strength = 0,
+                                const std::vector<double>& velocity = {0.3, 0, 0}) {
   const double dx = 1.0 / cells[0];
   const double lx = 1.0, ly = double(cells[1]) * dx, lz = double(cells[2]) * dx;
   std::ostringstream d;
@@ -85,14 +86,17 @@ inline std::string stripes_deck(int nmat, int width, const std::vector<int>& cel
       << (m < strength ? ", strength: {model: elastic_plastic, shear_modulus: 0.5, yield: 0.05}"
                        : "")
       << "}\n";
-  d << "regions:\n  - {material: gas0, shape: all, density: 1.0, pressure: 1.0, velocity: [0.3, 0, "
-       "0]}\n";
+  std::ostringstream vel;
+  vel.precision(17);
+  vel << "velocity: [" << velocity[0] << ", " << velocity[1] << ", " << velocity[2] << "]";
+  d << "regions:\n  - {material: gas0, shape: all, density: 1.0, pressure: 1.0, " << vel.str()
+    << "}\n";
   const int stripes = cells[0] / width;
   for (int s = 1; s < stripes; ++s) {
     const double lo = (s * width + 0.5) * dx, hi = ((s + 1) * width + 0.5) * dx;
     d << "  - {material: gas" << s % nmat << ", shape: box, lo: [" << lo << ", -1, -1], hi: ["
       << (s + 1 == stripes ? 2.0 : hi) << ", 2, 2], density: " << 1.0 + 0.1 * (s % nmat)
-      << ", pressure: 1.0, velocity: [0.3, 0, 0]}\n";
+      << ", pressure: 1.0, " << vel.str() << "}\n";
   }
   return d.str();
 }
