@@ -87,22 +87,16 @@ struct HaloSource {
   // in a message).
   static constexpr bool has_pure = true;
   KOKKOS_INLINE_FUNCTION bool pure(int i, int j, int k, int& id, Real& r, Real& en) const {
-    int idx[3] = {i, j, k};
-    for (int d = done - 1; d >= 0; --d) {
-      const int x = idx[d];
-      const int s = side_of(d, x);
-      if (s < 0) continue;
-      if (mode[d][s] == 0) {
-        const long o = received_cell(d, s, idx) * 3;
-        const Buffer& b = recv[d][s];
-        const Real a0 = b(o);
-        if (!(a0 < 0)) return false;
-        id = int(-a0) - 1;
-        r = b(o + 1);
-        en = b(o + 2);
-        return true;
-      }
-      idx[d] = source_index(d, s, x);
+    int idx[3] = {i, j, k}, d = 0, s = 0;
+    if (source_of(idx, d, s)) {
+      const long o = received_cell(d, s, idx) * 3;
+      const Buffer& b = recv[d][s];
+      const Real a0 = b(o);
+      if (!(a0 < 0)) return false;
+      id = int(-a0) - 1;
+      r = b(o + 1);
+      en = b(o + 2);
+      return true;
     }
     return stored_pure(idx[0], idx[1], idx[2], id, r, en);
   }
@@ -132,99 +126,81 @@ struct HaloSource {
     if (s < 0) return k;
     return mode[2][s] == 0 ? -1 : source_index(2, s, k);
   }
+  // Walks ghost idx back through the sweeps: true where it took a message (idx then the cell
+  // in sweep d's, side s's slab), false where it copies a stored cell (idx that cell).
+  KOKKOS_INLINE_FUNCTION bool source_of(int idx[3], int& d, int& s) const {
+    for (d = done - 1; d >= 0; --d) {
+      const int x = idx[d];
+      s = side_of(d, x);
+      if (s < 0) continue;  // sweep d left this cell alone
+      if (mode[d][s] == 0) return true;
+      // a boundary or periodic ghost copied the content its source cell had after sweep d-1
+      idx[d] = source_index(d, s, x);
+    }
+    return false;
+  }
+  // The received record of slab cell idx of sweep d, side s: emit(m, alpha, rho, e) for each of
+  // its materials, ascending; returns their count.
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int message_record(int d, int s, const int idx[3],
+                                            const Emit& emit) const {
+    const long cell = received_cell(d, s, idx);
+    const Buffer& b = recv[d][s];
+    const Real a0 = b(cell * 3);
+    if (a0 < 0) {  // a pure cell's head (pack): -(id + 1), rho, e
+      emit(int(-a0) - 1, Real(1), b(cell * 3 + 1), b(cell * 3 + 2));
+      return 1;
+    }
+    const int mask = int(a0);
+    long o = 3 * slab_cells(d) + long(b(cell * 3 + 1)) * kSplit + long(b(cell * 3 + 2));
+    int cnt = 0;
+    for (int m = 0; (mask >> m) != 0; ++m) {
+      if (!((mask >> m) & 1)) continue;
+      emit(m, b(o), b(o + 1), b(o + 2));
+      o += 3;
+      ++cnt;
+    }
+    return cnt;
+  }
+  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
+    int idx[3] = {i, j, k}, d = 0, s = 0;
+    if (source_of(idx, d, s)) {
+      for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
+      return message_record(d, s, idx, [&](int m, Real am, Real rm, Real em) {
+        a[m] = am;
+        r[m] = rm;
+        en[m] = em;
+      });
+    }
+    return read(idx[0], idx[1], idx[2], a, r, en);  // as stored before the exchange
+  }
   // content() as entries c < (the count returned) of material ids[c], ascending: the materials
   // the ghost's content holds, not all nmat (compact layout; MaterialState::assign, Sparse)
   static constexpr bool sparse = std::is_same_v<Dev, CompactDev>;
   KOKKOS_INLINE_FUNCTION int sparse_content(int i, int j, int k, int* ids, Real* a, Real* r,
                                             Real* en) const {
-    int idx[3] = {i, j, k};
-    for (int d = done - 1; d >= 0; --d) {
-      const int x = idx[d];
-      const int s = side_of(d, x);
-      if (s < 0) continue;
-      if (mode[d][s] == 0) {
-        const long cell = received_cell(d, s, idx);
-        const Buffer& b = recv[d][s];
-        const Real a0 = b(cell * 3);
-        if (a0 < 0) {
-          ids[0] = int(-a0) - 1;
-          a[0] = 1;
-          r[0] = b(cell * 3 + 1);
-          en[0] = b(cell * 3 + 2);
-          return 1;
-        }
-        const int mask = int(a0);
-        long o = 3 * slab_cells(d) + long(b(cell * 3 + 1)) * kSplit + long(b(cell * 3 + 2));
-        int c = 0;
-        for (int m = 0; (mask >> m) != 0; ++m) {
-          if (!((mask >> m) & 1)) continue;
-          ids[c] = m;
-          a[c] = b(o);
-          r[c] = b(o + 1);
-          en[c] = b(o + 2);
-          o += 3;
-          ++c;
-        }
-        return c;
-      }
-      idx[d] = source_index(d, s, x);
-    }
+    int idx[3] = {i, j, k}, d = 0, s = 0;
+    int c = 0;
+    auto entry = [&](int m, Real am, Real rm, Real em) {
+      ids[c] = m;
+      a[c] = am;
+      r[c] = rm;
+      en[c] = em;
+      ++c;
+    };
+    if (source_of(idx, d, s)) return message_record(d, s, idx, entry);
     if constexpr (sparse) {
       const int m = dev.mat(idx[0], idx[1], idx[2]);
       if (m >= 0) {
-        ids[0] = m;
-        a[0] = 1;
-        r[0] = rho(idx[0], idx[1], idx[2]);
-        en[0] = e(idx[0], idx[1], idx[2]);
+        entry(m, Real(1), rho(idx[0], idx[1], idx[2]), e(idx[0], idx[1], idx[2]));
         return 1;
       }
       const int f = dev.first(idx[0], idx[1], idx[2]), n = dev.nm(idx[0], idx[1], idx[2]);
-      for (int c = 0; c < n; ++c) {
-        ids[c] = dev.smat(f + c);
-        a[c] = dev.salpha(f + c);
-        r[c] = dev.srho(f + c);
-        en[c] = dev.se(f + c);
-      }
+      for (int q = f; q < f + n; ++q) entry(dev.smat(q), dev.salpha(q), dev.srho(q), dev.se(q));
       return n;
     } else {
       return 0;
     }
-  }
-  KOKKOS_INLINE_FUNCTION int content(int i, int j, int k, Real* a, Real* r, Real* en) const {
-    int idx[3] = {i, j, k};
-    for (int d = done - 1; d >= 0; --d) {
-      const int x = idx[d];
-      const int s = side_of(d, x);
-      if (s < 0) continue;  // sweep d left this cell alone
-      if (mode[d][s] == 0) {
-        const long cell = received_cell(d, s, idx);
-        const Buffer& b = recv[d][s];
-        const Real a0 = b(cell * 3);
-        for (int m = 0; m < nmat; ++m) a[m] = r[m] = en[m] = 0;
-        if (a0 < 0) {  // a pure cell's head (pack): -(id + 1), rho, e
-          const int id = int(-a0) - 1;
-          a[id] = 1;
-          r[id] = b(cell * 3 + 1);
-          en[id] = b(cell * 3 + 2);
-          return 1;
-        }
-        const int mask = int(a0);
-        long o = 3 * slab_cells(d) + long(b(cell * 3 + 1)) * kSplit + long(b(cell * 3 + 2));
-        int cnt = 0;
-        for (int m = 0; m < nmat; ++m) {
-          if (!((mask >> m) & 1)) continue;
-          a[m] = b(o);
-          r[m] = b(o + 1);
-          en[m] = b(o + 2);
-          o += 3;
-          ++cnt;
-        }
-        return cnt;
-      }
-      // a boundary or periodic ghost copied the content its source cell had after sweep d-1
-      idx[d] = source_index(d, s, x);
-    }
-    return read(idx[0], idx[1], idx[2], a, r, en);  // as stored before the exchange
   }
 };
 
