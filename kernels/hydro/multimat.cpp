@@ -310,7 +310,9 @@ struct RemapSource {
   // fractions, densities and energies) and of the fluxes V, M, E gained through its faces give
   // its new content in a, r, en; the count of the entries present is returned. An entry is a
   // material (content) or one of a list of them in ascending order (sparse_content): the same
-  // operations in the same order on the same values either way.
+  // operations in the same order on the same values either way. (One difference: where no
+  // entry keeps a positive volume the fallback "largest" is entry 0, material 0 or the list's
+  // first; every entry then leaves, so the content is empty either way.)
   KOKKOS_INLINE_FUNCTION int finish(int nm, Real p0, Real p1, Real* a, Real* r, Real* en,
                                     const Real* V, const Real* M, const Real* E) const {
     Real vol[kMaxMaterials], mass[kMaxMaterials], ener[kMaxMaterials];
