@@ -548,22 +548,18 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       // Sparse source's list (the materials it may hold; the others absent)
       Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];
       int ids[kMaxMaterials];
-      int nc = nmat;
+      int nc = nmat, n = 0, id = 0;
       if constexpr (Sparse<Source>::value) {
         nc = src.sparse_content(i, j, k, ids, a, r, en);
+        for (int c = 0; c < nc; ++c)
+          if (a[c] > 0) {
+            ++n;
+            id = ids[c];
+          }
       } else {
-        for (int m = 0; m < nmat; ++m) {
-          ids[m] = m;
-          a[m] = r[m] = en[m] = 0;
-        }
-        src.content(i, j, k, a, r, en);
+        n = new_content(src, i, j, k, nmat, a, r, en, id);
+        for (int m = 0; m < nmat; ++m) ids[m] = m;
       }
-      int n = 0, id = 0;
-      for (int c = 0; c < nc; ++c)
-        if (a[c] > 0) {
-          ++n;
-          id = ids[c];
-        }
       // The same materials in the same slots: a neighbour's content may read this cell's
       // layout (the remap reads the donor's material ids to split its face fluxes), so only
       // values change here, never which material a pure cell or a slot holds.
