@@ -121,11 +121,14 @@ struct RemapSource {
   // is not written keeps its values (stored back unchanged). `dev` must be the pool assign
   // starts from (reads_pool).
   static constexpr bool pure_columns = true;
+  // Returns whether every cell of the column was written (then the caller's general path has
+  // nothing to do there).
   template <class Stamp>
-  KOKKOS_INLINE_FUNCTION void pure_column(int i, int j, int k0, int k1, const Field3& crho,
+  KOKKOS_INLINE_FUNCTION bool pure_column(int i, int j, int k0, int k1, const Field3& crho,
                                           const Field3& ce, const Stamp& stamp) const {
     if constexpr (!std::is_same_v<Dev, mat::CompactDev>) {
       for (int k = k0; k < k1; ++k) stamp(i, j, k) = 0;
+      return k0 >= k1;
     } else {
       // (one type per declaration: the int, unsigned char and Real accessors differ)
       const auto mt = local(dev.mat);
@@ -140,6 +143,9 @@ struct RemapSource {
 #else
       constexpr int B = 32;
 #endif
+      // (1 when every cell was written: an AND over the stamps, in their own loop; a min
+      // reduction in the Real loop left it scalar)
+      unsigned char all = 1;
       auto loop = [&](auto several) {
         for (int kb = k0; kb < k1; kb += B) {
           const int ke = k1 - kb < B ? k1 : kb + B;
@@ -154,13 +160,18 @@ struct RemapSource {
             cen(i, j, k) = select_bits(ok, eo, e0);
             okv[k - kb] = ok ? Real(1) : Real(0);
           }
-          for (int k = kb; k < ke; ++k) st(i, j, k) = okv[k - kb] != 0 ? 1 : 0;
+          for (int k = kb; k < ke; ++k) {
+            const unsigned char sk = okv[k - kb] != 0 ? 1 : 0;
+            st(i, j, k) = sk;
+            all &= sk;
+          }
         }
       };
       if (nmat > 1)
         loop(std::true_type{});
       else
         loop(std::false_type{});
+      return all != 0;
     }
   }
   bool reads_pool(const mat::CompactDev& pool) const {
@@ -198,9 +209,9 @@ struct RemapSource {
       mass += Real(0);
       ener += Real(0);
     }
-    const Real vsum = Real(0) + vol;
-    const Real af = vol / vsum;
-    r_out = mass / (af * p1);
+    // (content()'s fraction vol / (0 + vol) is exactly 1 for a finite vol > 0, the only case
+    // whose result is kept, and 1 * p1 is p1: its division left out, the same bits)
+    r_out = mass / p1;
     e_out = ener / mass;
     return same & (vol > 0);
   }
@@ -588,10 +599,16 @@ struct FaceFluxes {
           cf(i, j, k) = md >= 0 && ((mask >> md) & 1u) ? Real(0) + mfa(i, j, k) : Real(0);
         }
       }
-      for (int k = k0; k < k1; ++k) {
-        const int md = v(i, j, k) > 0 ? mt(i - sx, j - sy, k - sz) : mt(i, j, k);
-        if (md < 0) (*this)(i, j, k);
-      }
+      // A column whose possible donors are all pure skips the loop below: an OR over the ids
+      // of the cells on both sides of its faces (an int loop of its own, which vectorizes; in
+      // the loop above it did not)
+      int ids = 0;
+      for (int k = k0 - sz; k < k1; ++k) ids |= mt(i, j, k) | mt(i - sx, j - sy, k);
+      if (ids < 0)
+        for (int k = k0; k < k1; ++k) {
+          const int md = v(i, j, k) > 0 ? mt(i - sx, j - sy, k - sz) : mt(i, j, k);
+          if (md < 0) (*this)(i, j, k);
+        }
     } else {
       for (int k = k0; k < k1; ++k) (*this)(i, j, k);
     }

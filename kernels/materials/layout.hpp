@@ -415,7 +415,7 @@ struct HasPure<S, std::void_t<decltype(S::has_pure)>> : std::integral_constant<b
 // A source whose changed cells are the box [lo, hi) (int lo[3], hi[3] members) may also do the
 // shortcut a column at a time, where a loop over k vectorizes (core/columns.hpp):
 //   static constexpr bool pure_columns = true;
-//   void pure_column(i, j, k0, k1, crho, ce, stamp) const;
+//   bool pure_column(i, j, k0, k1, crho, ce, stamp) const;  // true: every cell stamped 1
 //   bool reads_pool(const CompactDev& pool) const;  // (it reads `pool`, the one assign starts
 //   from)
 // For each k0 <= k < k1: where the cell stays its stored pure material (the shortcut has_pure
@@ -616,7 +616,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
       reduce_columns(
           name + "::in_place", src.lo, src.hi,
           KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& acc) {
-            src.pure_column(i, j, k0, k1, crho, ce, stamp);
+            if (src.pure_column(i, j, k0, k1, crho, ce, stamp)) return;  // every cell written
             for (int k = k0; k < k1; ++k)
               if (!stamp(i, j, k)) general(i, j, k, acc);
           },
