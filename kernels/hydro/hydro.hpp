@@ -34,7 +34,7 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const F& fx, const F& fy, const F& f
 
 // The volume a face sweeps in one step, from its four node velocities along the face's normal
 // (`a`: the step's dt times a quarter of the face's area): the x face at node coordinate i of
-// cell (i, j, k), and the y and z ones. Hydro::volume_fluxes stores them; a kernel that needs a
+// cell (i, j, k), and the y and z ones. The corrector's launch stores them; a kernel that needs a
 // cell's six faces can compute them here instead and gets the stored values' bits.
 template <class F3>
 KOKKOS_INLINE_FUNCTION Real face_flux_x(const F3& u, int i, int j, int k, Real a) {
@@ -311,7 +311,6 @@ class Hydro {
   // (the modules adjust p and c between the two).
   bool plain() const { return !mm_ && !strength_ && !burn_; }
   void viscosity_with(bool with_eos);
-  void volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt);
   // Multi-material pieces (multimat.cpp).
   void mm_equation_of_state() const;
   // (`f`: the half step's face factors, dt/2 times a quarter of each axis's face area)

@@ -103,10 +103,11 @@ struct NodeUpdate {
 
 // The single-material corrector over cells (i, j, kb .. ke - 1) of a column: each cell's six
 // face fluxes (its three low faces stored for the remap), the first remap step's volumes, the
-// full step's energy and density; Check: returns how many Lagrangian volumes are not positive
-// (else 0). A loop with no branch (the high faces of the block's last cells are stored by the
-// caller), which GCC vectorizes.
-template <class A>
+// full step's energy and density (Update; without it, a multi-material step's faces and
+// volumes, its corrector being per material); Check: returns how many Lagrangian volumes are
+// not positive (else 0). A loop with no branch (the high faces of the block's last cells are
+// stored by the caller), which GCC vectorizes.
+template <class A, bool Update = true>
 struct CorrectorColumns {
   A u, v, w, x, y, z, pre, post, rho, e, ph, q;
   Real vol, cx, cy, cz;
@@ -144,9 +145,11 @@ struct CorrectorColumns {
       z(i, j, k) = f.zl;
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
-      const Real mass = rho(i, j, k) * vol;
-      e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
-      rho(i, j, k) = mass / (vol + dv);
+      if constexpr (Update) {
+        const Real mass = rho(i, j, k) * vol;
+        e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
+        rho(i, j, k) = mass / (vol + dv);
+      }
       if (dvs) dvs[k - kb] = dv;
     }
   }
@@ -457,28 +460,6 @@ static std::array<Real, 3> face_factors(const Geometry& g, Real dt) {
           dt * g.dx[0] * g.dx[1] * Real(0.25)};
 }
 
-// Volume swept by each face in time dt, from the face-averaged node velocities.
-void Hydro::volume_fluxes(const Field3& u, const Field3& v, const Field3& w, Real dt) {
-  const Geometry g = mesh_.geometry();
-  const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
-            ez = mesh_.extent(Centering::Cell, 2);
-  auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  const auto f = face_factors(g, dt);
-  const Real ax = f[0], ay = f[1], az = f[2];
-  // One launch per face set (one launch for the three, with a branch per face set, took 1.96
-  // against 1.36 ms per cycle at 64^3, 2 threads). Multi-material scenes only: a
-  // single-material step finds the faces in its predictor and corrector.
-  Kokkos::parallel_for(
-      "lagrange::volume_flux_x", Policy3({0, 0, 0}, {ex + 1, ey, ez}),
-      KOKKOS_LAMBDA(int i, int j, int k) { fx(i, j, k) = face_flux_x(u, i, j, k, ax); });
-  Kokkos::parallel_for(
-      "lagrange::volume_flux_y", Policy3({0, 0, 0}, {ex, ey + 1, ez}),
-      KOKKOS_LAMBDA(int i, int j, int k) { fy(i, j, k) = face_flux_y(v, i, j, k, ay); });
-  Kokkos::parallel_for(
-      "lagrange::volume_flux_z", Policy3({0, 0, 0}, {ex, ey, ez + 1}),
-      KOKKOS_LAMBDA(int i, int j, int k) { fz(i, j, k) = face_flux_z(w, i, j, k, az); });
-}
-
 Health Hydro::lagrange(Real dt, long cycle) {
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
@@ -568,23 +549,20 @@ Health Hydro::lagrange(Real dt, long cycle) {
                   {wb, Centering::Node, {1, 1, -1}}});
 
   // Corrector: full-step volume change with time-centred velocities, p dV with p at t+dt/2.
-  // (A single-material corrector writes the face fluxes itself, for the remap.)
-  if (mm_) volume_fluxes(ub, vb, wb, dt);
-  // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
-  if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
-  // The Lagrangian volumes must stay positive (owned cells). A single-material cycle counts
-  // them in the corrector's launch; a multi-material one in a launch of its own.
+  // Each cell finds its six face fluxes, stores its three low faces (and the high ones at the
+  // block's high side) for the remap, writes the cycle's first remap step's volumes and counts
+  // the non-positive Lagrangian volumes of the owned cells, and (a single material) updates its
+  // energy and density, in one launch: the three face launches, the first remap::volumes and a
+  // volume check saved (fields bit for bit: the same arithmetic). A multi-material step
+  // launches it before its per-material corrector (lagrange::volume_flux), which reads the
+  // stored faces, as does the strength corrector.
   const Real vmin = vol;
   const int olo[3] = {Mesh::ng, Mesh::ng, Mesh::ng};
   const int ohi[3] = {Mesh::ng + mesh_.owned_cells(0), Mesh::ng + mesh_.owned_cells(1),
                       Mesh::ng + mesh_.owned_cells(2)};
   long bad = 0;
-  if (mm_) {
-    mm_corrector(vol);
-  } else {
-    // Each cell finds its six face fluxes, stores its three low faces (and the high ones at
-    // the block's high side), and writes the cycle's first remap step's volumes: three face
-    // launches and the first remap::volumes saved (fields bit for bit: the same arithmetic).
+  auto corrector = [&](const char* name, auto update) {
+    constexpr bool Update = decltype(update)::value;
     const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
               ez = mesh_.extent(Centering::Cell, 2);
     const Real cx = cf[0], cy = cf[1], cz = cf[2];
@@ -595,10 +573,10 @@ Health Hydro::lagrange(Real dt, long cycle) {
     mesh_.box(Centering::Cell, Region::All, lo, hi);
     // (k-columns, core/columns.hpp)
     reduce_columns(
-        "lagrange::corrector", lo, hi,
+        name, lo, hi,
         KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
           const auto U = local(ub);
-          const CorrectorColumns<decltype(U)> col{
+          const CorrectorColumns<decltype(U), Update> col{
               U,          local(vb),   local(wb),  local(fx), local(fy), local(fz),
               local(pre), local(post), local(rho), local(e),  local(ph), local(q),
               vol,        cx,          cy,         cz,        sw,        vmin};
@@ -623,18 +601,17 @@ Health Hydro::lagrange(Real dt, long cycle) {
         bad);
     volumes_ready_ = true;
     volumes_for_ = first;
-  }
+  };
+  if (mm_) corrector("lagrange::volume_flux", std::false_type{});
+  // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
+  if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
+  if (mm_)
+    mm_corrector(vol);
+  else
+    corrector("lagrange::corrector", std::true_type{});
   // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
   if (burn_) burn_->update(rho, double(dt));
 
-  if (mm_)
-    Kokkos::parallel_reduce(
-        "lagrange::volume_check", mesh_.cells(Region::Owned),
-        KOKKOS_LAMBDA(int i, int j, int k, long& n) {
-          const Real dv = net_volume_flux(fx, fy, fz, i, j, k);
-          if (!(vmin + dv > 0)) ++n;
-        },
-        bad);
   long total_bad = 0;
   MPI_Allreduce(&bad, &total_bad, 1, MPI_LONG, MPI_SUM, mesh_.comm());
   Health h;
