@@ -322,7 +322,8 @@ class Hydro {
   void mm_cell_update(const Dev& dev, int d);
   void mm_remap_faces(int d);
   void mm_remap_cells(int d);
-  void mm_ke_fix();
+  // (`next`: as remap_step's; the compact layout's pure launch then writes its volumes)
+  void mm_ke_fix(const RemapStep* next);
   // The carriers' densities of a remap step (before the cell update).
   void mm_carriers();
   // After the cell update: a cell its carrier left (through a face, or as a sliver below

@@ -1021,6 +1021,7 @@ struct PureCorrector {
 // MixedKeFix for the pure cells.
 template <bool ByMass>
 struct PureKeFix {
+  static constexpr bool by_mass = ByMass;
   IntField3 mat;
   Field3 kel, rho, e, post;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
@@ -1038,6 +1039,28 @@ struct PureKeFix {
       de = mmax(de, ke_fix_floor(e0));
       en(i, j, k) = select_bits(mt(i, j, k) >= 0, e0 + de, e0);
     }
+  }
+};
+
+// PureKeFix on the owned cells of a column of every cell (ghosts included), then the next remap
+// step's volumes of the whole column (stored_step_volumes, after the fix has read `post`): the
+// next step's remap::volumes launch saved, as the single-material KE fix does.
+template <bool ByMass>
+struct PureKeFixAhead {
+  PureKeFix<ByMass> fix;
+  Field3 fx, fy, fz, pre;
+  Real vol;
+  StepWeights sw;
+  int olo[3], ohi[3];
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    if (i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1]) {
+      const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
+      const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
+      fix(i, j, b, f);
+    }
+    const auto a = local(fx), bb = local(fy), c = local(fz), p0 = local(pre), p1 = local(fix.post);
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) stored_step_volumes(a, bb, c, i, j, k, vol, sw, p0, p1);
   }
 };
 
@@ -1254,7 +1277,7 @@ Hydro::Carrier Hydro::carrier(int slot) const {
   return {{f, f, f}, carrier_rho_[slot]};
 }
 
-void Hydro::mm_ke_fix() {
+void Hydro::mm_ke_fix(const RemapStep* next) {
   auto kel = s_.ke_loss, rho = s_.rho, e = s_.e, post = s_.post_vol;
   const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
@@ -1265,13 +1288,32 @@ void Hydro::mm_ke_fix() {
     return;
   }
   const IntField3 mt = mm_->compact().mat;
-  if (by_mass)
-    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
-                PureKeFix<true>{mt, kel, rho, e, post});
-  else
-    for_columns("remap::ke_fix[pure]", lo.data(), hi.data(),
-                PureKeFix<false>{mt, kel, rho, e, post});
+  // the mixed cells first: the pure launch may then write every cell's next volumes
   mm_->for_mixed("remap::ke_fix", lo, hi, op);
+  auto launch = [&](auto fix) {
+    if (!next) {
+      for_columns("remap::ke_fix[pure]", lo.data(), hi.data(), fix);
+      return;
+    }
+    PureKeFixAhead<decltype(fix)::by_mass> ahead{fix,
+                                                 s_.vol_flux[0],
+                                                 s_.vol_flux[1],
+                                                 s_.vol_flux[2],
+                                                 s_.pre_vol,
+                                                 mesh_.geometry().cell_volume(),
+                                                 next->weights(),
+                                                 {lo[0], lo[1], lo[2]},
+                                                 {hi[0], hi[1], hi[2]}};
+    int alo[3], ahi[3];
+    mesh_.box(Centering::Cell, Region::All, alo, ahi);
+    for_columns("remap::ke_fix[pure]", alo, ahi, ahead);
+    volumes_ready_ = true;
+    volumes_for_ = *next;
+  };
+  if (by_mass)
+    launch(PureKeFix<true>{mt, kel, rho, e, post});
+  else
+    launch(PureKeFix<false>{mt, kel, rho, e, post});
 }
 
 // Explicit instantiations for the layouts' device handles.

@@ -592,7 +592,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
         });
   }
   if (opt_.ke_fix && mm_) {
-    mm_ke_fix();
+    mm_ke_fix(next);
   } else if (opt_.ke_fix) {
     // Owned cells read owned nodes only.
     // a column's cells (k-columns, core/columns.hpp): each cell's 8 nodes are the columns

@@ -1,7 +1,9 @@
 #include "materials/layout.hpp"
 
 #include <climits>
+#include <limits>
 
+#include "core/columns.hpp"
 #include "core/error.hpp"
 #include "core/math.hpp"
 #include "core/reduce.hpp"
@@ -650,24 +652,54 @@ long MaterialState::first_bad(int& material, int& what) const {
     // one pass over the owned cells: a pure cell's material state is the cell's (checked
     // against the same floors as in a mixed cell), a mixed cell's are its slots
     auto crho = rho_, ce = e_;
-    Kokkos::parallel_reduce(
-        "matter::check", Policy3({ng, ng, ng}, {hx, hy, hz}),
-        KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
-          const int id = d.mat(i, j, k);
-          const long cell = g.global_cell(i, j, k, nx, ny);
-          if (id >= 0) {
-            const int c = code(id, crho(i, j, k), ce(i, j, k));
-            if (c < 0) return;
-            const long key = (cell * kM + id) * 4 + c;
-            if (key < acc) acc = key;
-            return;
-          }
-          const int f = d.first(i, j, k);
-          for (int q = f; q < f + d.nm(i, j, k); ++q) {
-            const int c = code(d.smat(q), d.srho(q), d.se(q));
-            if (c < 0) continue;
-            const long key = (cell * kM + d.smat(q)) * 4 + c;
-            if (key < acc) acc = key;
+    auto point = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      const int id = d.mat(i, j, k);
+      const long cell = g.global_cell(i, j, k, nx, ny);
+      if (id >= 0) {
+        const int c = code(id, crho(i, j, k), ce(i, j, k));
+        if (c < 0) return;
+        const long key = (cell * kM + id) * 4 + c;
+        if (key < acc) acc = key;
+        return;
+      }
+      const int f = d.first(i, j, k);
+      for (int q = f; q < f + d.nm(i, j, k); ++q) {
+        const int c = code(d.smat(q), d.srho(q), d.se(q));
+        if (c < 0) continue;
+        const long key = (cell * kM + d.smat(q)) * 4 + c;
+        if (key < acc) acc = key;
+      }
+    };
+    // (k-columns, core/columns.hpp: a chunk of a column is screened by a vector loop that
+    // passes a pure cell whose density is positive and finite and whose energy is finite and
+    // at least every material's floor; only a chunk with another cell, a mixed one or one
+    // nearer a floor, is walked again by point(), which finds the exact key)
+    Real top = -std::numeric_limits<Real>::infinity();
+    for (int m = 0; m < nmat_; ++m) top = !(fl.e[m] <= top) ? fl.e[m] : top;  // (NaN: all walked)
+    const int lo[3] = {ng, ng, ng}, hi[3] = {hx, hy, hz};
+    reduce_columns_with(
+        "matter::check", lo, hi,
+        KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& acc) {
+          const auto mt = local(d.mat);
+          const auto ra = local(crho), ea = local(ce);
+          constexpr Real big = std::numeric_limits<Real>::max();
+          constexpr int kChunk = 32;
+          Real bad[kChunk];
+          for (int kb = k0; kb < k1; kb += kChunk) {
+            const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
+            using MP_KOKKOS_MATH::fabs;
+#pragma GCC ivdep
+            for (int k = kb; k < ke; ++k) {
+              const Real id = mt(i, j, k);  // (as Real, exact: tests of one width vectorize)
+              const Real r = ra(i, j, k), en = ea(i, j, k);
+              const bool ok =
+                  (id >= 0) & (r > 0) & (fabs(r) <= big) & (fabs(en) <= big) & (en >= top);
+              bad[k - kb] = ok ? Real(0) : Real(1);
+            }
+            bool any = false;
+            for (int k = kb; k < ke; ++k) any = any || bad[k - kb] > 0;
+            if (any)
+              for (int k = kb; k < ke; ++k) point(i, j, k, acc);
           }
         },
         Kokkos::Min<long>(first));
