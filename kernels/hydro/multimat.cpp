@@ -851,12 +851,14 @@ struct MixedKeFix {
 // cycle's whole Lagrange step. The bodies below are those functors' arithmetic for a PureCell,
 // operand for operand (so the fields are the same bits): a column is cut into runs of one pure
 // material (a mixed cell joins the run it is in: its values are computed with the run's
-// material and not stored), each run's EOS record is read once and its kind is a template
-// argument, so the loop over a run is the single-material loop (GCC vectorizes it; gathering
-// the record per cell kept it scalar, 4x the single-material predictor's time); every value
-// is computed and then stored only where the cell is pure (a select: the mixed cells keep
-// what they had, and the [mixed] launch after takes them). An explosive with an unreacted EOS
-// (BurnHook::mixed) keeps the per-point functors.
+// material from its cell averages and stored, and the [mixed] launch after overwrites them:
+// MixedEos and MixedPredictor write every mixed cell's p, c and ph), each run's EOS record is
+// read once and its kind is a template argument, so the loop over a run is the single-material
+// loop (GCC vectorizes it; gathering the record per cell kept it scalar, 4x the
+// single-material predictor's time; so did a select that stored only the pure cells' values,
+// beside the EOS's own selects: the ideal-gas predictor ran scalar, 2.2x the single-material
+// one's profile samples). An explosive with an unreacted EOS (BurnHook::mixed) keeps the
+// per-point functors.
 
 // body.template run<K>(i, j, ka, kb, m) for each run [ka, kb) of the column's cells whose pure
 // cells are all material m, of kind K (body: a PureEos or PurePredictor, whose material ids and
@@ -935,14 +937,12 @@ struct PureEos {
   Real d_cj;
   template <int K>
   KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int mr) const {
-    const auto mt = local(mat);
     const auto r = local(rho), en = local(e), pa = local(p), ca = local(c), f = local(bf);
     const bool he = mr == bm;
     const Real dcj = d_cj;
     const eos::Eos eq = tab.template at<K>(mr);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
-      const int m = mt(i, j, k);
       const Real rv = r(i, j, k), ev = en(i, j, k);
       Real pm = eq.template pressure_cut<K>(rv, ev);
       Real cm = eq.template sound_speed_cut<K>(rv, ev);
@@ -951,10 +951,8 @@ struct PureEos {
         pm = he ? pm * fv : pm;
         cm = he && fv < 1 ? mmax(cm, dcj) : cm;
       }
-      const bool pure = m >= 0;
-      const Real p0 = pa(i, j, k), c0 = ca(i, j, k);
-      pa(i, j, k) = select_bits(pure, pm, p0);
-      ca(i, j, k) = select_bits(pure, cm, c0);
+      pa(i, j, k) = pm;
+      ca(i, j, k) = cm;
     }
   }
 };
@@ -969,7 +967,6 @@ struct PurePredictor {
   int bm;
   template <int K>
   KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int mr) const {
-    const auto mt = local(mat);
     const auto U = local(u), V = local(v), W = local(w), r = local(rho), en = local(e),
                pa = local(p), qa = local(q), out = local(ph), f = local(bf);
     const Real fx = ax, fy = ay, fz = az, v0 = vol;
@@ -977,7 +974,6 @@ struct PurePredictor {
     const eos::Eos eq = tab.template at<K>(mr);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
-      const int m = mt(i, j, k);
       const Real dv = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz).net();
       const Real v_half = v0 + dv;
       const Real mass = r(i, j, k) * v0;
@@ -987,8 +983,7 @@ struct PurePredictor {
         const Real fv = f(i, j, k);
         pm = he ? pm * fv : pm;
       }
-      const Real old = out(i, j, k);
-      out(i, j, k) = select_bits(m >= 0, pm, old);
+      out(i, j, k) = pm;
     }
   }
 };
