@@ -558,26 +558,40 @@ struct FaceFluxes {
       const auto mt = local(dev.mat);
       const auto v = local(vf), pa = local(pre), ra = local(rho), ea = local(e), mfa = local(mf),
                  efa = local(ef);
+      // The ids of the four cells around every face of the column (an int loop of its own,
+      // which vectorizes): `diff` is 0 where they are all one material, and `ids` < 0 where one
+      // of them is mixed. A column of one pure material (most of them) takes the
+      // single-material loop: every face smooth, no first-order flux to select from, no id
+      // loads; the same bits as the general loop's selects give there.
+      int diff = 0, ids = 0;
+      for (int k = k0; k < k1; ++k) {
+        auto at = [&](int o) { return mt(i + o * sx, j + o * sy, k + o * sz); };
+        const int m2 = at(-2), m1 = at(-1), m0 = at(0), p1 = at(1);
+        diff |= (m2 ^ m1) | (m1 ^ m0) | (m0 ^ p1);
+        ids |= m1 | m0;  // (the faces' possible donors)
+      }
+      const bool uniform = diff == 0 && ids >= 0;
       // (the advection order a template argument: as a loop-invariant select GCC left the loop
-      // scalar, "unsupported use in stmt")
-      auto faces = [&](auto ord) {
+      // scalar, "unsupported use in stmt"; so is `uniform`)
+      auto faces = [&](auto ord, auto one) {
         constexpr int Ord = decltype(ord)::value;
+        constexpr bool One = decltype(one)::value;
 #pragma GCC ivdep
         for (int k = k0; k < k1; ++k) {
           const Real f = v(i, j, k);
-          const bool pos = f > 0;
           auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
-          // (the ids as Real, exact: tests of one width with the wind's, which GCC vectorizes;
-          // int tests beside a Real one it did not, "unsupported use in stmt")
-          const Real nm2 = at(mt, -2), nm1 = at(mt, -1), n0 = at(mt, 0), n1 = at(mt, 1);
-          // (pure_of of the up- and downwind cells, for either wind; the donor's own test is
-          // the last loop's)
-          const bool smooth = pos ? (nm2 == nm1) & (n0 == nm1) : (n1 == n0) & (nm1 == n0);
-          // (both orders found and one selected: a per-face order left the loop scalar; the
-          // first-order values are donor_flux's for order 1, bit for bit)
           Real Mm, Em;
           column_face_flux(f, at, ra, ea, pa, Ord, Mm, Em);
-          if constexpr (Ord != 1) {
+          if constexpr (Ord != 1 && !One) {
+            const bool pos = f > 0;
+            // (the ids as Real, exact: tests of one width with the wind's, which GCC
+            // vectorizes; int tests beside a Real one it did not, "unsupported use in stmt")
+            const Real nm2 = at(mt, -2), nm1 = at(mt, -1), n0 = at(mt, 0), n1 = at(mt, 1);
+            // (pure_of of the up- and downwind cells, for either wind; the donor's own test is
+            // the last loop's)
+            const bool smooth = pos ? (nm2 == nm1) & (n0 == nm1) : (n1 == n0) & (nm1 == n0);
+            // (both orders found and one selected: a per-face order left the loop scalar; the
+            // first-order values are donor_flux's for order 1, bit for bit)
             Real M1, E1;
             column_face_flux(f, at, ra, ea, pa, 1, M1, E1);
             Mm = smooth ? Mm : M1;
@@ -587,10 +601,16 @@ struct FaceFluxes {
           efa(i, j, k) = Em;
         }
       };
-      if (order == 2)
-        faces(std::integral_constant<int, 2>{});
+      auto with_order = [&](auto one) {
+        if (order == 2)
+          faces(std::integral_constant<int, 2>{}, one);
+        else
+          faces(std::integral_constant<int, 1>{}, one);
+      };
+      if (uniform)
+        with_order(std::true_type{});
       else
-        faces(std::integral_constant<int, 1>{});
+        with_order(std::false_type{});
       for (int c = 0; c < nc; ++c) {
         const auto cf = local(cflux[c]);
         const unsigned mask = cmask[c];
@@ -599,11 +619,7 @@ struct FaceFluxes {
           cf(i, j, k) = md >= 0 && ((mask >> md) & 1u) ? Real(0) + mfa(i, j, k) : Real(0);
         }
       }
-      // A column whose possible donors are all pure skips the loop below: an OR over the ids
-      // of the cells on both sides of its faces (an int loop of its own, which vectorizes; in
-      // the loop above it did not)
-      int ids = 0;
-      for (int k = k0 - sz; k < k1; ++k) ids |= mt(i, j, k) | mt(i - sx, j - sy, k);
+      // a column whose possible donors are all pure skips the loop below
       if (ids < 0)
         for (int k = k0; k < k1; ++k) {
           const int md = v(i, j, k) > 0 ? mt(i - sx, j - sy, k - sz) : mt(i, j, k);
