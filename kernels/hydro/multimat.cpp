@@ -146,15 +146,28 @@ struct RemapSource {
       // (1 when every cell was written: an AND over the stamps, in their own loop; a min
       // reduction in the Real loop left it scalar)
       unsigned char all = 1;
-      auto loop = [&](auto several) {
+      // A column whose cells and their two neighbours along d are all one pure material (an
+      // int loop of its own, which vectorizes) skips the id loads and tests: every cell there
+      // stays that material where its volume stays positive.
+      int diff = 0, ids = 0;
+      {
+        constexpr int sx = d == 0, sy = d == 1, sz = d == 2;
+        for (int k = k0; k < k1; ++k) {
+          const int c = mt(i, j, k);
+          diff |= (mt(i - sx, j - sy, k - sz) ^ c) | (c ^ mt(i + sx, j + sy, k + sz));
+          ids |= c;
+        }
+      }
+      const bool uniform = diff == 0 && ids >= 0;
+      auto loop = [&](auto several, auto one) {
         for (int kb = k0; kb < k1; kb += B) {
           const int ke = k1 - kb < B ? k1 : kb + B;
           Real okv[B];
 #pragma GCC ivdep
           for (int k = kb; k < ke; ++k) {
             Real ro, eo;
-            const bool ok =
-                pure_update<decltype(several)::value>(mt, v, m, en, p0, p1, r, es, i, j, k, ro, eo);
+            const bool ok = pure_update<decltype(several)::value, decltype(one)::value>(
+                mt, v, m, en, p0, p1, r, es, i, j, k, ro, eo);
             const Real r0 = cr(i, j, k), e0 = cen(i, j, k);  // (loaded unconditionally)
             cr(i, j, k) = select_bits(ok, ro, r0);
             cen(i, j, k) = select_bits(ok, eo, e0);
@@ -167,10 +180,16 @@ struct RemapSource {
           }
         }
       };
-      if (nmat > 1)
-        loop(std::true_type{});
+      auto with_several = [&](auto one) {
+        if (nmat > 1)
+          loop(std::true_type{}, one);
+        else
+          loop(std::false_type{}, one);
+      };
+      if (uniform)
+        with_several(std::true_type{});
       else
-        loop(std::false_type{});
+        with_several(std::false_type{});
       return all != 0;
     }
   }
@@ -182,17 +201,21 @@ struct RemapSource {
   }
   // pure_column's arithmetic on any accessors (views, or core/columns.hpp's locals): whether the
   // cell stays its pure material, and its density and energy if so (computed either way)
-  template <bool several, class I, class F>
+  // (One: the caller knows the cell and its two neighbours along d are one pure material)
+  template <bool several, bool One = false, class I, class F>
   KOKKOS_INLINE_FUNCTION bool pure_update(const I& mt, const F& vf_, const F& mf_, const F& ef_,
                                           const F& pre_, const F& post_, const F& rho_, const F& e_,
                                           int i, int j, int k, Real& r_out, Real& e_out) const {
     const int sx = d == 0, sy = d == 1, sz = d == 2;
     const int fi = i + sx, fj = j + sy, fk = k + sz;
-    const int m = mt(i, j, k);
     const Real flo = vf_(i, j, k), fhi = vf_(fi, fj, fk);
-    // (bitwise & of the tests: no branch in the loop)
-    const bool same = (m >= 0) & (!(flo > 0) | (mt(i - sx, j - sy, k - sz) == m)) &
-                      ((fhi > 0) | (mt(fi, fj, fk) == m));
+    bool same = true;
+    if constexpr (!One) {
+      const int m = mt(i, j, k);
+      // (bitwise & of the tests: no branch in the loop)
+      same = (m >= 0) & (!(flo > 0) | (mt(i - sx, j - sy, k - sz) == m)) &
+             ((fhi > 0) | (mt(fi, fj, fk) == m));
+    }
     Real V = 0, M = 0, E = 0;
     V += Real(1) * flo;
     M += Real(1) * mf_(i, j, k);
