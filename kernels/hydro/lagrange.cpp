@@ -443,8 +443,8 @@ void Hydro::viscosity_with(bool with_eos) {
         const auto ra = local(rho), ca = local(c), qa = local(q);
         if (with_eos) eos_columns(ra, local(e), local(p), ca, eos)(i, j, k0, k1);
         const bool inside = i >= plo && j >= plo && i < phi[0] && j < phi[1];
-        const int b = inside ? (k0 > plo ? k0 : plo < k1 ? plo : k1) : k1;
-        const int f = inside ? (k1 < phi[2] ? k1 : phi[2] > b ? phi[2] : b) : k1;
+        int b = k1, f = k1;
+        if (inside) inner_run(k0, k1, plo, phi[2], b, f);
         for (int k = k0; k < b; ++k) qa(i, j, k) = 0;
         if (b < f)
           ViscosityColumns<decltype(ra)>{local(u), local(v), local(w), ra, ca, qa,
@@ -583,8 +583,8 @@ Health Hydro::lagrange(Real dt, long cycle) {
           // the Lagrangian volumes are checked in the owned cells only: the column in three
           // runs, the middle one checked where the column is owned
           const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
-          const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
-          const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
+          int b, f;
+          inner_run(k0, k1, olo[2], ohi[2], b, f);
           col.template run<false>(i, j, k0, b);
           if (col_owned)
             n += col.template run<true>(i, j, b, f);

@@ -1088,8 +1088,8 @@ struct PureKeFixAhead {
   int olo[3], ohi[3];
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     if (i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1]) {
-      const int b = k0 > olo[2] ? k0 : olo[2] < k1 ? olo[2] : k1;
-      const int f = k1 < ohi[2] ? k1 : ohi[2] > b ? ohi[2] : b;
+      int b, f;
+      inner_run(k0, k1, olo[2], ohi[2], b, f);
       fix(i, j, b, f);
     }
     const auto a = local(fx), bb = local(fy), c = local(fz), p0 = local(pre), p1 = local(fix.post);

@@ -51,6 +51,14 @@ KOKKOS_INLINE_FUNCTION auto local(const View& f) {
   return Local3<T, unit>{f.data(), long(f.stride(0)), long(f.stride(1)), long(f.stride(2))};
 }
 
+// The part [b, f) of a column's cells [k0, k1) that lies in [lo, hi) along k, so that the
+// column runs as [k0, b), [b, f), [f, k1) (k0 <= b <= f <= k1; b == f where they do not meet):
+// a kernel that treats the owned (or inner) cells of a column apart from its ghosts.
+KOKKOS_INLINE_FUNCTION void inner_run(int k0, int k1, int lo, int hi, int& b, int& f) {
+  b = k0 > lo ? k0 : lo < k1 ? lo : k1;
+  f = k1 < hi ? k1 : hi > b ? hi : b;
+}
+
 // body(i, j, k0, k1) for every (i, j, k) of the box [lo, hi): the body runs k from k0 to k1
 // (one call per column on host backends, k1 = k0 + 1 on GPU backends).
 template <class Body>
