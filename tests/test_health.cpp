@@ -518,13 +518,17 @@ TEST(Health, ExecutableExits3WithValidSummary) {
   // effective sound speed are infinite, the first step is dt = 0, and p dV gives e = e - inf * 0
   // = NaN there; the Lagrangian volumes stay positive, so the health check, not the volume
   // check, stops the run. Double cannot overflow from a deck (initial values are capped at 1e30,
-  // issue #14), so it runs a cold solid: aluminium at e = 0 with strength (configs/
-  // elastic_wave.yaml) takes a few-ulp negative elastic work ahead of the wave at cycle 2, and
-  // the health check stops it on the negative energy (docs/numerics.md, "Strength").
+  // issue #14), so it runs a solid in tension: aluminium (configs/elastic_wave.yaml) painted at
+  // 1.5 g/cc, 0.55 of its reference density, contracts under its Mie-Grueneisen tension, the
+  // tension's work -p dV cools it, and at cycle 31 the cell beside the wall is at e = -3.4e-3,
+  // below the solid's floor -c0^2 / 100 = -2.9e-3: the health check stops it on the negative
+  // energy. (Until 2026-12-05 it ran the bar at e = 0, whose few-ulp negative elastic work the
+  // e >= 0 check caught; a single Mie-Grueneisen material now has its mixed-cell floor,
+  // docs/numerics.md "Health check".)
   const std::string deck = test::kFloat ? "sod_x.yaml" : "elastic_wave.yaml";
   const std::vector<std::string> ov =
       test::kFloat ? std::vector<std::string>{"mesh.cells=[9,2,2]", "regions.1.velocity=[1e30,0,0]"}
-                   : std::vector<std::string>{"regions.0.energy=0"};
+                   : std::vector<std::string>{"regions.0.density=1.5"};
   auto sim = make(deck, ov);
   const RunResult in_process = sim->run();
   const hydro::Health& h = in_process.health;

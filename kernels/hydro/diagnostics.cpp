@@ -176,6 +176,12 @@ Health Hydro::check() const {
   const int tx = Mesh::ng + mesh_.owned_cells(0), ty = Mesh::ng + mesh_.owned_cells(1),
             tz = Mesh::ng + mesh_.owned_cells(2);
   const bool several = mm_ != nullptr;
+  // A single material's floor: 0, or a Mie-Grueneisen solid's -c0^2 / 100 (its e is measured
+  // from the ambient state; the floor of its materials in a mixed cell, eos.hpp energy_floor).
+  // A cold solid at e = 0 ahead of a shock went to -7e-36 by the round-off of p dV (steel
+  // against a rigid wall, tests/test_materials.cpp, once the viscosity's round-off stress was
+  // dropped: docs/numerics.md, "Tensor viscosity").
+  const Real efloor = several ? Real(0) : eos_.energy_floor();
   long first = LONG_MAX;
   // (k-columns: a column is screened in chunks by a vector loop, each point's tests as a 0/1
   // value, and only a chunk with a bad point is walked again by the per-point key below)
@@ -184,10 +190,10 @@ Health Hydro::check() const {
       const Real r = rho(i, j, k), en = e(i, j, k), pr = p(i, j, k);
       // (a multi-material scene's energies are checked per material, against each
       // material's floor: MaterialState::first_bad)
-      const long what = !(r > 0) || !misfinite(r)                    ? kBadDensity
-                        : (!(en >= 0) && !several) || !misfinite(en) ? kBadEnergy
-                        : !misfinite(pr)                             ? kBadPressure
-                                                                     : kNotBad;
+      const long what = !(r > 0) || !misfinite(r)                         ? kBadDensity
+                        : (!(en >= efloor) && !several) || !misfinite(en) ? kBadEnergy
+                        : !misfinite(pr)                                  ? kBadPressure
+                                                                          : kNotBad;
       if (what >= 0) {
         const long key = (g.global_cell(i, j, k, nx, ny) * kBadKinds + what) * 8;
         if (key < acc) acc = key;
@@ -213,8 +219,8 @@ Health Hydro::check() const {
                    wa = local(w);
         const bool cells = i < tx && j < ty;
         constexpr Real big = std::numeric_limits<Real>::max();
-        // (en >= 0 || several) for every finite en: a NaN fails the finite test anyway
-        const Real emin = several ? -std::numeric_limits<Real>::infinity() : Real(0);
+        // (en >= efloor || several) for every finite en: a NaN fails the finite test anyway
+        const Real emin = several ? -std::numeric_limits<Real>::infinity() : efloor;
         constexpr int kChunk = 32;
         Real bad[kChunk];
         for (int kb = k0; kb < k1; kb += kChunk) {
