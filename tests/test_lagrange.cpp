@@ -8,10 +8,12 @@
 #include <gtest/gtest.h>
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "hydro/point.hpp"
 #include "support.hpp"
 
 using namespace mp;
@@ -144,3 +146,97 @@ TEST(Lagrange, StepAloneConservesTotalEnergy) {
 }
 
 }  // namespace
+
+// The tensor viscosity's direction tensor (kernels/hydro/point.hpp, compression_direction;
+// docs/numerics.md, "Tensor viscosity").
+namespace {
+
+using hydro::Sym6;
+
+// R D R^T for a rotation R (rows r[0..2])
+Sym6 rotate(const Sym6& d, const double r[3][3]) {
+  const double a[3][3] = {{d.xx, d.xy, d.xz}, {d.xy, d.yy, d.yz}, {d.xz, d.yz, d.zz}};
+  double b[3][3] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) b[i][j] += r[i][k] * a[k][l] * r[j][l];
+  return {Real(b[0][0]), Real(b[1][1]), Real(b[2][2]), Real(b[0][1]), Real(b[0][2]), Real(b[1][2])};
+}
+double contract(const Sym6& s, const Sym6& d) {
+  return double(s.xx) * d.xx + double(s.yy) * d.yy + double(s.zz) * d.zz +
+         2 * (double(s.xy) * d.xy + double(s.xz) * d.xz + double(s.yz) * d.yz);
+}
+double max_diff(const Sym6& a, const Sym6& b) {
+  return std::max({std::abs(double(a.xx) - b.xx), std::abs(double(a.yy) - b.yy),
+                   std::abs(double(a.zz) - b.zz), std::abs(double(a.xy) - b.xy),
+                   std::abs(double(a.xz) - b.xz), std::abs(double(a.yz) - b.yz)});
+}
+
+}  // namespace
+
+TEST(TensorViscosity, PlanarFlowsGetTheirAxisExactly) {
+  // a compression along one axis, with or without a transverse expansion: Q acts along it alone,
+  // exactly (a flow along one axis keeps the scalar viscosity's forces and work)
+  const Sym6 x = hydro::compression_direction({-2.5, 0, 0, 0, 0, 0});
+  const Sym6 y = hydro::compression_direction({0, -0.3, 0.1, 0, 0, 0});
+  const Sym6 z = hydro::compression_direction({0.2, 0, -7, 0, 0, 0});
+  EXPECT_EQ(x.xx, 1);
+  EXPECT_EQ(x.yy, 0);
+  EXPECT_EQ(x.zz, 0);
+  EXPECT_EQ(x.xy, 0);
+  // y: lambda_max 0.1 (the expanding z), tr D = -0.2, so S = diag(0.1, 0.4, 0) / 0.5: the
+  // neutral x takes a share, the expanding z none
+  EXPECT_NEAR(y.yy, 0.8, test::roundoff(1e-15));
+  EXPECT_NEAR(y.xx, 0.2, test::roundoff(1e-15));
+  EXPECT_EQ(y.zz, 0);
+  EXPECT_EQ(y.xy, 0);
+  EXPECT_NEAR(z.zz, 7.2 / 7.4, test::roundoff(1e-15));
+  EXPECT_NEAR(z.yy, 0.2 / 7.4, test::roundoff(1e-15));
+  EXPECT_EQ(z.xx, 0);
+}
+
+TEST(TensorViscosity, RotatesWithTheFlowAndDissipates) {
+  // a planar compression along a unit normal n (D = d n n): S = n n, for any n; a spherical
+  // shock's strain (radial d_r, tangential d_t = 0.1 d_r twice): S is the radial n n
+  const double n[3] = {0.36, 0.48, 0.8};
+  for (const double dt : {0.0, 0.1, 0.25}) {
+    // D = d_r n n + d_t (I - n n), d_r = -4
+    const double dr = -4, dtan = dt * dr;
+    Sym6 d;
+    double m[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) m[i][j] = (dr - dtan) * n[i] * n[j] + (i == j ? dtan : 0);
+    d = {Real(m[0][0]), Real(m[1][1]), Real(m[2][2]), Real(m[0][1]), Real(m[0][2]), Real(m[1][2])};
+    const Sym6 s = hydro::compression_direction(d);
+    const Sym6 nn{Real(n[0] * n[0]), Real(n[1] * n[1]), Real(n[2] * n[2]),
+                  Real(n[0] * n[1]), Real(n[0] * n[2]), Real(n[1] * n[2])};
+    std::printf("d_t / d_r = %.2f: |S - n n| = %.2e, S:D = %.6f (d_r %.1f)\n", dt, max_diff(s, nn),
+                contract(s, d), dr);
+    EXPECT_LT(max_diff(s, nn), test::roundoff(1e-14));
+    EXPECT_NEAR(contract(s, d), dr, test::roundoff(1e-13));
+  }
+  // a general strain rate and its rotations: S(R D R^T) = R S(D) R^T, trace 1, S:D <= 0 when
+  // tr D < 0 (the viscous work is dissipative), and S = I / 3 where D is isotropic
+  const double c = std::cos(0.7), sn = std::sin(0.7);
+  const double r1[3][3] = {{c, -sn, 0}, {sn, c, 0}, {0, 0, 1}};
+  const double r2[3][3] = {{1, 0, 0}, {0, c, sn}, {0, -sn, c}};
+  const Sym6 samples[] = {{-3, 1, 0.5, 0.7, -0.2, 0.4},
+                          {-1, -1, 1.9, 0.01, 0.02, -0.03},
+                          {0.3, -2, -0.1, 1.1, 0.5, -0.6},
+                          {-1, -1.2, -0.9, 0.3, 0.2, 0.1}};
+  for (const Sym6& d : samples) {
+    const Sym6 s = hydro::compression_direction(d);
+    EXPECT_NEAR(double(s.xx) + s.yy + s.zz, 1.0, test::roundoff(1e-14));
+    if (d.xx + d.yy + d.zz < 0) {
+      EXPECT_LE(contract(s, d), 0.0);
+    }
+    const Sym6 rs = hydro::compression_direction(rotate(d, r1));
+    const Sym6 rrs = hydro::compression_direction(rotate(d, r2));
+    EXPECT_LT(max_diff(rs, rotate(s, r1)), test::roundoff(1e-13));
+    EXPECT_LT(max_diff(rrs, rotate(s, r2)), test::roundoff(1e-13));
+  }
+  const Sym6 iso = hydro::compression_direction({-2, -2, -2, 0, 0, 0});
+  EXPECT_EQ(iso.xx, Real(1) / 3);
+  EXPECT_EQ(iso.xy, 0);
+}

@@ -10,7 +10,9 @@
 #include <vector>
 
 #include "burn/module.hpp"
+#include "core/columns.hpp"
 #include "eos/eos.hpp"
+#include "hydro/point.hpp"
 #include "io/hdf5_writer.hpp"
 #include "materials/layout.hpp"
 #include "mesh/halo.hpp"
@@ -47,6 +49,19 @@ KOKKOS_INLINE_FUNCTION Real face_flux_y(const F3& v, int i, int j, int k, Real a
 template <class F3>
 KOKKOS_INLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a) {
   return a * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
+}
+
+// The tensor viscosity's six fields as one Sym6 (point.hpp): as views, or as core/columns.hpp
+// local accessors (in a column's body).
+template <class V>
+KOKKOS_INLINE_FUNCTION Sym6At<V> sym6_view(const V& a, const V& b, const V& c, const V& d,
+                                           const V& e, const V& f) {
+  return {a, b, c, d, e, f};
+}
+template <class V>
+KOKKOS_INLINE_FUNCTION auto sym6_local(const V& a, const V& b, const V& c, const V& d, const V& e,
+                                       const V& f) {
+  return Sym6At<decltype(local(a))>{local(a), local(b), local(c), local(d), local(e), local(f)};
 }
 
 // A cell's six face volume fluxes (low and high along each axis) from the node velocities.
@@ -143,6 +158,9 @@ struct Options {
   int order = 2;  // advection order: 2 van Leer, 1 donor cell
   Real q_linear = 0.2;
   Real q_quadratic = 1.0;
+  // the viscous stress Q = q ((1 - b) S + b I), b = q_isotropic (point.hpp): 0 the tensor, 1 the
+  // scalar q of a pressure
+  Real q_isotropic = 0;
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
@@ -199,6 +217,12 @@ struct Options {
 struct State {
   // cells
   Field3 rho, e, p, c, q;
+  // the tensor viscosity Q = q S (point.hpp, compression_direction): xx, yy, zz, xy, xz, yz
+  std::array<Field3, 6> qt;
+  // per cell column (i, j): 1 where some cell of it has a viscous stress (the Lagrangian
+  // kernels skip the stress of the columns without)
+  Kokkos::View<int**, MemSpace> qcol;
+  Field3 qw;  // a multi-material step's viscous work per cell (the corrector's, for its materials)
   Field3 p_half;             // pressure at the half step (predictor)
   Field3 pre_vol, post_vol;  // cell volumes before / after one remap sweep
   // nodes

@@ -19,73 +19,112 @@ namespace {
 template <class Pressure>
 void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const Field3& w, Real ax,
                       Real ay, Real az, const Field3& rho, const Field3& e, const Field3& p,
-                      const Field3& q, const Field3& ph, Real vol, const Pressure& pressure) {
+                      const std::array<Field3, 6>& qt, const Kokkos::View<int**, MemSpace>& qcol,
+                      const Field3& ph, Real vol, const Pressure& pressure) {
   // (k-columns, core/columns.hpp)
   int lo[3], hi[3];
   mesh.box(Centering::Cell, Region::All, lo, hi);
+  const auto q0 = qt[0], q1 = qt[1], q2 = qt[2], q3 = qt[3], q4 = qt[4], q5 = qt[5];
   for_columns(
       "lagrange::predictor", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         const auto U = local(u), V = local(v), W = local(w), ra = local(rho), ea = local(e),
-                   pa = local(p), qa = local(q), out = local(ph);
+                   pa = local(p), out = local(ph);
+        const auto Q = sym6_local(q0, q1, q2, q3, q4, q5);
+        // (a column without a viscous stress does no viscous work: Q = 0, the work not summed)
+        const auto run = [&](auto stress) {
 #pragma GCC ivdep
-        for (int k = k0; k < k1; ++k) {
-          const Real dv = cell_face_fluxes(U, V, W, i, j, k, ax, ay, az).net();
-          const Real mass = ra(i, j, k) * vol;
-          const Real v_half = vol + dv;
-          const Real e_half = pdv_energy(ea(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
-          out(i, j, k) = pressure(mass / v_half, e_half, i, j, k);
-        }
+          for (int k = k0; k < k1; ++k) {
+            const CellFaceFluxes f = cell_face_fluxes(U, V, W, i, j, k, ax, ay, az);
+            const Real dv = f.net();
+            const Real mass = ra(i, j, k) * vol;
+            const Real v_half = vol + dv;
+            Real wq = 0;
+            if constexpr (decltype(stress)::value)
+              wq = viscous_work(Q(i, j, k), f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, U, V, W, i, j, k,
+                                ax, ay, az);
+            const Real e_half = pdv_energy(ea(i, j, k), pa(i, j, k), dv, wq, mass);
+            out(i, j, k) = pressure(mass / v_half, e_half, i, j, k);
+          }
+        };
+        if (qcol(i, j))
+          run(std::true_type{});
+        else
+          run(std::false_type{});
       });
 }
 
 // A node's acceleration and its start- and end-of-step velocities (the point function of
 // Hydro::lagrange's acceleration launches; a functor, not a generic lambda: nvcc allows no
-// generic extended lambda). pha, qa, ra: p at the half step, q and rho, as views or local().
+// generic extended lambda). pha, Q, ra: p at the half step, the viscous stress and rho, as views
+// or local().
 struct NodeUpdate {
   Real vol, axf, ayf, azf, dt;
   bool has_strength;
-  template <class P, class Q, class R, class F, class G>
-  KOKKOS_INLINE_FUNCTION void operator()(const P& pha, const Q& qa, const R& ra, const F& U,
+  template <class P, class QA, class R, class F, class G>
+  KOKKOS_INLINE_FUNCTION void operator()(const P& pha, const Sym6At<QA>& Q, const R& ra, const F& U,
                                          const F& V, const F& W, const G& Ub, const G& Vb,
                                          const G& Wb, Real force_sx, Real force_sy, Real force_sz,
                                          int i, int j, int k) const {
-    Real pt[8], rc[8];
+    Corners c8;
     for (int c = 0; c < 2; ++c)
       for (int b = 0; b < 2; ++b)
-        for (int a = 0; a < 2; ++a) {
-          const int ci = i - 1 + a, cj = j - 1 + b, ck = k - 1 + c;
-          pt[a + 2 * b + 4 * c] = pha(ci, cj, ck) + qa(ci, cj, ck);
-          rc[a + 2 * b + 4 * c] = ra(ci, cj, ck);
-        }
+        for (int a = 0; a < 2; ++a)
+          c8.set(a + 2 * b + 4 * c, pha, Q, ra, i - 1 + a, j - 1 + b, k - 1 + c);
     if (has_strength)
-      apply<true>(pt, rc, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
+      apply<true>(c8, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
     else
-      apply<false>(pt, rc, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
+      apply<false>(c8, U, V, W, Ub, Vb, Wb, force_sx, force_sy, force_sz, i, j, k);
   }
-  // The same from the node's 8 cells' p + q and densities, corner (a, b, c) at a + 2 b + 4 c;
-  // Strength: the strength forces are added (a template argument: GCC vectorizes no select on
-  // a loop-invariant bool).
+  // The node's 8 cells, corner (a, b, c) at a + 2 b + 4 c: the normal stresses p + Q_dd along
+  // each axis, the shear components of Q and the densities.
+  struct Corners {
+    Real px[8], py[8], pz[8], sxy[8], sxz[8], syz[8], rc[8];
+    template <class P, class QA, class R>
+    KOKKOS_INLINE_FUNCTION void set(int n, const P& pha, const Sym6At<QA>& Q, const R& ra, int ci,
+                                    int cj, int ck) {
+      const Real p = pha(ci, cj, ck);
+      px[n] = p + Q.xx(ci, cj, ck);
+      py[n] = p + Q.yy(ci, cj, ck);
+      pz[n] = p + Q.zz(ci, cj, ck);
+      sxy[n] = Q.xy(ci, cj, ck);
+      sxz[n] = Q.xz(ci, cj, ck);
+      syz[n] = Q.yz(ci, cj, ck);
+      rc[n] = ra(ci, cj, ck);
+    }
+  };
+  // The same from the node's 8 cells; Strength: the strength forces are added (a template
+  // argument: GCC vectorizes no select on a loop-invariant bool).
   template <bool Strength, class F, class G>
-  KOKKOS_INLINE_FUNCTION void apply(const Real pt[8], const Real rc[8], const F& U, const F& V,
-                                    const F& W, const G& Ub, const G& Vb, const G& Wb,
-                                    Real force_sx, Real force_sy, Real force_sz, int i, int j,
-                                    int k) const {
+  KOKKOS_INLINE_FUNCTION void apply(const Corners& c8, const F& U, const F& V, const F& W,
+                                    const G& Ub, const G& Vb, const G& Wb, Real force_sx,
+                                    Real force_sy, Real force_sz, int i, int j, int k) const {
     // A cell below the node along an axis pushes it up, a cell above pushes it down: each axis's
     // sum over the four pairs of cells across the node, as differences, so a field uniform
     // along an axis gives exactly no force along it (a planar flow on a 3-D mesh keeps its
     // transverse velocities exactly 0; summed cell by cell, p0 + p1 - p0 - p1 left round-off,
     // 1e-15 in the layout study's stripes, and every mixed cell then ran the interface
-    // reconstruction for a round-off flux in the transverse sweeps).
+    // reconstruction for a round-off flux in the transverse sweeps). The viscous stress's shear
+    // Q_ab pushes along a across the pairs along b (the same face areas as the cells' viscous
+    // work, point.hpp viscous_work); it is exactly 0 in a flow along one axis.
     Real fxs = 0, fys = 0, fzs = 0, mass = 0;
+    Real xy = 0, xz = 0, yx = 0, yz = 0, zx = 0, zy = 0;
     for (int q = 0; q < 4; ++q) {
       const int lo = q & 1, hi = q >> 1;  // the pair's two other coordinates
-      fxs += pt[2 * lo + 4 * hi] - pt[1 + 2 * lo + 4 * hi];
-      fys += pt[lo + 4 * hi] - pt[lo + 2 + 4 * hi];
-      fzs += pt[lo + 2 * hi] - pt[lo + 2 * hi + 4];
+      const int x0 = 2 * lo + 4 * hi, y0 = lo + 4 * hi, z0 = lo + 2 * hi;  // low corners
+      fxs += c8.px[x0] - c8.px[x0 + 1];
+      fys += c8.py[y0] - c8.py[y0 + 2];
+      fzs += c8.pz[z0] - c8.pz[z0 + 4];
+      xy += c8.sxy[y0] - c8.sxy[y0 + 2];
+      xz += c8.sxz[z0] - c8.sxz[z0 + 4];
+      yx += c8.sxy[x0] - c8.sxy[x0 + 1];
+      yz += c8.syz[z0] - c8.syz[z0 + 4];
+      zx += c8.sxz[x0] - c8.sxz[x0 + 1];
+      zy += c8.syz[y0] - c8.syz[y0 + 2];
     }
-    for (int c = 0; c < 8; ++c) mass += rc[c];
+    for (int c = 0; c < 8; ++c) mass += c8.rc[c];
     mass *= Real(0.125) * vol;
-    Real force_x = fxs * axf, force_y = fys * ayf, force_z = fzs * azf;
+    Real force_x = fxs * axf + (xy * ayf + xz * azf), force_y = fys * ayf + (yx * axf + yz * azf),
+         force_z = fzs * azf + (zx * axf + zy * ayf);
     if constexpr (Strength) {
       force_x += force_sx;
       force_y += force_sy;
@@ -109,7 +148,10 @@ struct NodeUpdate {
 // stored by the caller), which GCC vectorizes.
 template <class A, bool Update = true>
 struct CorrectorColumns {
-  A u, v, w, x, y, z, pre, post, rho, e, ph, q;
+  A u, v, w, x, y, z, pre, post, rho, e, ph;
+  Sym6At<std::remove_const_t<A>> Q;
+  A qw;        // (!Update: each cell's viscous work, for the per-material corrector)
+  int stress;  // whether the column has a viscous stress (Hydro's s_.qcol; none: no work)
   Real vol, cx, cy, cz;
   StepWeights sw;
   Real vmin;
@@ -137,6 +179,13 @@ struct CorrectorColumns {
   }
   // dvs (if not null): each cell's volume change, at k - kb
   KOKKOS_INLINE_FUNCTION void cells(int i, int j, int kb, int ke, Real* dvs) const {
+    if (stress)
+      cells_with<true>(i, j, kb, ke, dvs);
+    else
+      cells_with<false>(i, j, kb, ke, dvs);
+  }
+  template <bool Stress>
+  KOKKOS_INLINE_FUNCTION void cells_with(int i, int j, int kb, int ke, Real* dvs) const {
 #pragma GCC ivdep
     for (int k = kb; k < ke; ++k) {
       const CellFaceFluxes f = fluxes(i, j, k);
@@ -145,10 +194,16 @@ struct CorrectorColumns {
       z(i, j, k) = f.zl;
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
+      Real wq = 0;
+      if constexpr (Stress)
+        wq = viscous_work(Q(i, j, k), f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, u, v, w, i, j, k, cx,
+                          cy, cz);
       if constexpr (Update) {
         const Real mass = rho(i, j, k) * vol;
-        e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), q(i, j, k), dv, mass);
+        e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), dv, wq, mass);
         rho(i, j, k) = mass / (vol + dv);
+      } else {
+        qw(i, j, k) = wq;
       }
       if (dvs) dvs[k - kb] = dv;
     }
@@ -251,6 +306,55 @@ struct ViscosityColumns {
   }
 };
 
+// The tensor viscosity's stress Q = q S of cells (i, j, k0 .. k1 - 1) of a column (point.hpp,
+// compression_direction), S from the cell's strain rate (the velocity gradient from the
+// face-averaged node jumps, rx = 1 / (4 dx) ...); Q = 0 where q = 0 (no eigenvalue is sought
+// there: most cells of most flows).
+constexpr Real kQNoise = sizeof(Real) == 8 ? Real(1e-10) : Real(1e-4);
+template <class A>
+struct ViscousTensorColumns {
+  A u, v, w, q, rho, c;
+  Sym6At<std::remove_const_t<A>> Q;
+  Real rx, ry, rz, iso;
+  // returns whether some cell of the column has a stress; `had`: whether it had one before
+  KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k0, int k1, bool had) const {
+    int any = 0;
+    // (a q below kQNoise rho c^2 is round-off's: the compressions of a gas at rest, and the
+    // remainder the limiter leaves of a linear one, |du| ~ 4 eps |u|, q / rho c^2 ~ 0.2 x 4 eps
+    // u / c with u / c up to 1e3 in Noh's cold inflow: 1e-10 in double, 1e-4 in float; it gets
+    // no stress)
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const Real cc = c(i, j, k);
+      any |= q(i, j, k) > kQNoise * rho(i, j, k) * cc * cc ? 1 : 0;
+    }
+    if (!any) {
+      // (a column without a stress last time still holds zeros)
+      if (had)
+#pragma GCC ivdep
+        for (int k = k0; k < k1; ++k) Q.set(i, j, k, {0, 0, 0, 0, 0, 0});
+      return false;
+    }
+    for (int k = k0; k < k1; ++k) {
+      const Real qq = q(i, j, k), cc = c(i, j, k);
+      Sym6 t{0, 0, 0, 0, 0, 0};
+      if (qq > kQNoise * rho(i, j, k) * cc * cc) {
+        const Sym6 d{node_jump<0>(u, i, j, k) * rx,
+                     node_jump<1>(v, i, j, k) * ry,
+                     node_jump<2>(w, i, j, k) * rz,
+                     Real(0.5) * (node_jump<1>(u, i, j, k) * ry + node_jump<0>(v, i, j, k) * rx),
+                     Real(0.5) * (node_jump<2>(u, i, j, k) * rz + node_jump<0>(w, i, j, k) * rx),
+                     Real(0.5) * (node_jump<2>(v, i, j, k) * rz + node_jump<1>(w, i, j, k) * ry)};
+        const Sym6 s = compression_direction(d);
+        const Real qt = qq * (1 - iso), qi = qq * iso;
+        t = {qt * s.xx + qi, qt * s.yy + qi, qt * s.zz + qi, qt * s.xy, qt * s.xz, qt * s.yz};
+      }
+      Q.set(i, j, k, t);
+    }
+    return true;
+  }
+};
+
 }  // namespace
 
 Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, eos::Eos eos)
@@ -264,6 +368,9 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.p = mesh.new_field("pressure", C);
   s_.c = mesh.new_field("sound_speed", C);
   s_.q = mesh.new_field("viscosity", C);
+  for (int c = 0; c < 6; ++c)
+    s_.qt[c] = mesh.new_field(std::string("viscosity_") + kSym6Names[c], C);
+  s_.qcol = Kokkos::View<int**, MemSpace>("viscous_columns", mesh.extent(C, 0), mesh.extent(C, 1));
   s_.p_half = mesh.new_field("pressure_half", C);
   s_.pre_vol = mesh.new_field("pre_volume", C);
   s_.post_vol = mesh.new_field("post_volume", C);
@@ -293,6 +400,7 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     }
   }
   if (eos.size() > 1) {
+    s_.qw = mesh.new_field("viscous_work", C);
     mats_.n = static_cast<int>(eos.size());
     if (mats_.n > mat::kMaxMaterials)
       throw RunError("at most " + std::to_string(mat::kMaxMaterials) + " materials per scene");
@@ -437,6 +545,11 @@ void Hydro::viscosity_with(bool with_eos) {
   const Real rx = Real(1) / g.dx[0], ry = Real(1) / g.dx[1], rz = Real(1) / g.dx[2];
   int lo[3], hi[3];
   mesh_.box(Centering::Cell, Region::All, lo, hi);
+  const auto q0 = s_.qt[0], q1 = s_.qt[1], q2 = s_.qt[2], q3 = s_.qt[3], q4 = s_.qt[4],
+             q5 = s_.qt[5];
+  const Real iso = opt_.q_isotropic;
+  const auto qcol = s_.qcol;
+  const Real tx = Real(0.25) * rx, ty = Real(0.25) * ry, tz = Real(0.25) * rz;
   for_columns(
       with_eos ? "lagrange::eos_viscosity" : "lagrange::viscosity", lo, hi,
       KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
@@ -450,6 +563,12 @@ void Hydro::viscosity_with(bool with_eos) {
           ViscosityColumns<decltype(ra)>{local(u), local(v), local(w), ra, ca, qa,
                                          rx,       ry,       rz,       cq, cl}(i, j, b, f);
         for (int k = f; k < k1; ++k) qa(i, j, k) = 0;
+        // the tensor's direction, where q > 0 (a column's q is 0 outside [b, f))
+        const bool any = ViscousTensorColumns<decltype(ra)>{
+            local(u), local(v), local(w), qa, ra, ca, sym6_local(q0, q1, q2, q3, q4, q5),
+            tx,       ty,       tz,       iso}(i, j, k0, k1, !kWholeColumns || qcol(i, j) != 0);
+        // (per point on a GPU backend: every column marked, nothing skipped)
+        qcol(i, j) = kWholeColumns ? int(any) : 1;
       });
 }
 
@@ -463,7 +582,12 @@ static std::array<Real, 3> face_factors(const Geometry& g, Real dt) {
 Health Hydro::lagrange(Real dt, long cycle) {
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
-  auto rho = s_.rho, e = s_.e, p = s_.p, q = s_.q, ph = s_.p_half;
+  auto rho = s_.rho, e = s_.e, p = s_.p, ph = s_.p_half;
+  const auto q0 = s_.qt[0], q1 = s_.qt[1], q2 = s_.qt[2], q3 = s_.qt[3], q4 = s_.qt[4],
+             q5 = s_.qt[5];
+  // (a multi-material step's per-cell viscous work; a single-material one has none and passes
+  // a field the corrector does not touch)
+  auto qw = mm_ ? s_.qw : s_.rho;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const auto eos = eos_;
   const Real half = Real(0.5) * dt;
@@ -482,14 +606,14 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const Real e0 = burn_->e0();
     auto f = burn_->fraction();
     predictor_kernel(
-        mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
+        mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
           return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         });
   } else {
     // (the EOS kind dispatched here, so the predictor's loop has no switch: PressureCut)
     eos::with_kind(eos.kind, [&](auto kind) {
-      predictor_kernel(mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, q, ph, vol,
+      predictor_kernel(mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
                        PressureCut<decltype(kind)::value>{eos});
     });
   }
@@ -508,11 +632,12 @@ Health Hydro::lagrange(Real dt, long cycle) {
              azf = g.dx[0] * g.dx[1] * Real(0.25);
   // (k-columns, core/columns.hpp)
   const NodeUpdate node_update{vol, axf, ayf, azf, dt, has_strength};
+  const auto qcol = s_.qcol;
   if (has_strength) {
     Kokkos::parallel_for(
         "lagrange::acceleration", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          node_update(ph, q, rho, u, v, w, ub, vb, wb, fsx(i, j, k), fsy(i, j, k), fsz(i, j, k), i,
-                      j, k);
+          node_update(ph, sym6_view(q0, q1, q2, q3, q4, q5), rho, u, v, w, ub, vb, wb, fsx(i, j, k),
+                      fsy(i, j, k), fsz(i, j, k), i, j, k);
         });
   } else {
     int lo[3], hi[3];
@@ -521,23 +646,51 @@ Health Hydro::lagrange(Real dt, long cycle) {
         "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
           // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c
           using Col = decltype(column(ph, i, j));  // a pointer, or a strided column (GPU)
-          const Col pc[4] = {column(ph, i - 1, j - 1), column(ph, i, j - 1), column(ph, i - 1, j),
-                             column(ph, i, j)};
-          const Col qc[4] = {column(q, i - 1, j - 1), column(q, i, j - 1), column(q, i - 1, j),
-                             column(q, i, j)};
-          const Col rcol[4] = {column(rho, i - 1, j - 1), column(rho, i, j - 1),
-                               column(rho, i - 1, j), column(rho, i, j)};
+          const auto cols = [&](const Field3& f) {
+            return Kokkos::Array<Col, 4>{column(f, i - 1, j - 1), column(f, i, j - 1),
+                                         column(f, i - 1, j), column(f, i, j)};
+          };
+          const auto pc = cols(ph), rcol = cols(rho), cxx = cols(q0), cyy = cols(q1),
+                     czz = cols(q2), cxy = cols(q3), cxz = cols(q4), cyz = cols(q5);
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
+          // no viscous stress in the four cell columns around: p alone (the same values: Q = 0)
+          if (!(qcol(i - 1, j - 1) | qcol(i, j - 1) | qcol(i - 1, j) | qcol(i, j))) {
+#pragma GCC ivdep
+            for (int k = k0; k < k1; ++k) {
+              NodeUpdate::Corners c8;
+              for (int c = 0; c < 2; ++c)
+                for (int ab = 0; ab < 4; ++ab) {
+                  const int n = ab + 4 * c, ck = k - 1 + c;
+                  const Real pp = pc[ab][ck];
+                  c8.px[n] = pp;
+                  c8.py[n] = pp;
+                  c8.pz[n] = pp;
+                  c8.sxy[n] = 0;
+                  c8.sxz[n] = 0;
+                  c8.syz[n] = 0;
+                  c8.rc[n] = rcol[ab][ck];
+                }
+              node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+            }
+            return;
+          }
 #pragma GCC ivdep
           for (int k = k0; k < k1; ++k) {
-            Real pt[8], rc[8];
+            NodeUpdate::Corners c8;
             for (int c = 0; c < 2; ++c)
               for (int ab = 0; ab < 4; ++ab) {
-                pt[ab + 4 * c] = pc[ab][k - 1 + c] + qc[ab][k - 1 + c];
-                rc[ab + 4 * c] = rcol[ab][k - 1 + c];
+                const int n = ab + 4 * c, ck = k - 1 + c;
+                const Real pp = pc[ab][ck];
+                c8.px[n] = pp + cxx[ab][ck];
+                c8.py[n] = pp + cyy[ab][ck];
+                c8.pz[n] = pp + czz[ab][ck];
+                c8.sxy[n] = cxy[ab][ck];
+                c8.sxz[n] = cxz[ab][ck];
+                c8.syz[n] = cyz[ab][ck];
+                c8.rc[n] = rcol[ab][ck];
               }
-            node_update.template apply<false>(pt, rc, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+            node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
           }
         });
   }
@@ -577,9 +730,11 @@ Health Hydro::lagrange(Real dt, long cycle) {
         KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
           const auto U = local(ub);
           const CorrectorColumns<decltype(U), Update> col{
-              U,          local(vb),   local(wb),  local(fx), local(fy), local(fz),
-              local(pre), local(post), local(rho), local(e),  local(ph), local(q),
-              vol,        cx,          cy,         cz,        sw,        vmin};
+              U,          local(vb),  local(wb),  local(fx),
+              local(fy),  local(fz),  local(pre), local(post),
+              local(rho), local(e),   local(ph),  sym6_local(q0, q1, q2, q3, q4, q5),
+              local(qw),  qcol(i, j), vol,        cx,
+              cy,         cz,         sw,         vmin};
           // the Lagrangian volumes are checked in the owned cells only: the column in three
           // runs, the middle one checked where the column is owned
           const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];

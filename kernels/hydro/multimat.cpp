@@ -670,13 +670,15 @@ struct BurnHook {
   Real e0 = 0;
 };
 
-// The viscous work of a mixed cell goes to its materials in proportion to their mass (the
-// same specific energy to each: -q dV / (rho_cell V)), not by equal strain, which would give
-// each material q dV / (rho_m V) and so heat (or, where the cell expands along one axis while
-// compressed along another, cool) a light material in a heavy one's shock by the density ratio:
-// air beside copper went to negative energy in a cycle. A material then takes q rho_m / rho_cell
-// as the viscous term of pdv_energy; a pure cell keeps q itself (rho_m == rho_cell: the same
-// work, and the bits of before). docs/numerics.md, "Mixed cells".
+// The viscous work W of a mixed cell (point.hpp viscous_work: the tensor viscosity's work
+// over the step) goes to its materials in proportion to their mass (the same specific energy
+// to each: -W / (rho_cell V)), not by equal strain, which would give each material W / (rho_m V)
+// and so heat (or, where the cell expands along one axis while compressed along another, cool) a
+// light material in a heavy one's shock by the density ratio: air beside copper went to
+// negative energy in a cycle. A material then takes W rho_m / rho_cell as the viscous term of
+// pdv_energy; a pure cell takes W itself. The predictor finds W from the start-of-step
+// velocities; the corrector reads the cell's from the face launch (s_.qw, written by
+// lagrange::volume_flux). docs/numerics.md, "Mixed cells".
 // (mat::holds_several tells the two apart.)
 
 BurnHook burn_hook(const burn::Burn* b) {
@@ -739,24 +741,28 @@ struct MixedEos {
 struct MixedPredictor {
   mat::MaterialSet mats;
   BurnHook bh;
-  Field3 q, ph, rho;
+  Sym6At<Field3> Q;
+  Field3 ph, rho;
   Field3 u, v, w;
   Real ax, ay, az;
   Real vol;
 
   template <class Cell>
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
-    const Real dv = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az).net();
+    const CellFaceFluxes f = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az);
+    const Real dv = f.net();
     const Real v_half = vol + dv;
     Real sum = 0, last = 0;
     int n = 0;
     const bool several = mat::holds_several(cell);
-    const Real qs = q(i, j, k) / rho(i, j, k);
+    const Real wq = viscous_work(Q(i, j, k), f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, u, v, w, i, j,
+                                 k, ax, ay, az);
+    const Real ws = wq / rho(i, j, k);
     for (int s = 0; s < cell.count(); ++s) {
       const MatRef m = cell.get(s);
       if (!(m.alpha > 0)) continue;
       const Real mass = *m.rho * vol;
-      const Real e_half = pdv_energy(*m.e, *m.p, several ? qs * *m.rho : q(i, j, k), dv, mass);
+      const Real e_half = pdv_energy(*m.e, *m.p, dv, several ? ws * *m.rho : wq, mass);
       Real pm;
       if (bh.mixed && m.m == bh.material) {
         pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
@@ -781,7 +787,7 @@ struct MixedCorrector {
   int iters;
   Real tol, fmin, sfloor;
   BurnHook bh;
-  Field3 q, rho, e;
+  Field3 qw, rho, e;
   Field3 fx, fy, fz;
   Real vol;
 
@@ -794,12 +800,12 @@ struct MixedCorrector {
     Real mv[kMaxMaterials], mm[kMaxMaterials], me[kMaxMaterials], pm[kMaxMaterials];
     int n = 0;
     const bool several = mat::holds_several(cell);
-    const Real qs = q(i, j, k) / rho(i, j, k);
+    const Real wq = qw(i, j, k), ws = wq / rho(i, j, k);
     for (int s = 0; s < cell.count(); ++s) {
       const MatRef m = cell.get(s);
       if (!(m.alpha > 0)) continue;
       const Real mass = *m.rho * vol;
-      *m.e = pdv_energy(*m.e, *m.ph, several ? qs * *m.rho : q(i, j, k), dv, mass);
+      *m.e = pdv_energy(*m.e, *m.ph, dv, several ? ws * *m.rho : wq, mass);
       *m.rho = mass / vnew;
       slot[n] = s;
       id[n] = m.m;
@@ -1001,22 +1007,28 @@ template <bool Burn>
 struct PurePredictor {
   EosTable tab;
   IntField3 mat;
-  Field3 u, v, w, rho, e, p, q, ph, bf;
+  Field3 u, v, w, rho, e, p;
+  std::array<Field3, 6> qt;
+  Field3 ph, bf;
   Real ax, ay, az, vol;
   int bm;
   template <int K>
   KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int mr) const {
     const auto U = local(u), V = local(v), W = local(w), r = local(rho), en = local(e),
-               pa = local(p), qa = local(q), out = local(ph), f = local(bf);
+               pa = local(p), out = local(ph), f = local(bf);
+    const auto Q = sym6_local(qt[0], qt[1], qt[2], qt[3], qt[4], qt[5]);
     const Real fx = ax, fy = ay, fz = az, v0 = vol;
     const bool he = mr == bm;
     const eos::Eos eq = tab.template at<K>(mr);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
-      const Real dv = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz).net();
+      const CellFaceFluxes ff = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz);
+      const Real dv = ff.net();
       const Real v_half = v0 + dv;
       const Real mass = r(i, j, k) * v0;
-      const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), qa(i, j, k), dv, mass);
+      const Real wq = viscous_work(Q(i, j, k), ff.xh - ff.xl, ff.yh - ff.yl, ff.zh - ff.zl, U, V, W,
+                                   i, j, k, fx, fy, fz);
+      const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), dv, wq, mass);
       Real pm = eq.template pressure_cut<K>(mass / v_half, e_half);
       if constexpr (Burn) {
         const Real fv = f(i, j, k);
@@ -1031,11 +1043,11 @@ struct PurePredictor {
 // not called, so the column runs as K = -1 whatever the kinds).
 struct PureCorrector {
   IntField3 mat;
-  Field3 q, rho, e, ph, fx, fy, fz;
+  Field3 qw, rho, e, ph, fx, fy, fz;
   Real vol;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     const auto mt = local(mat);
-    const auto qa = local(q), r = local(rho), en = local(e), pha = local(ph), X = local(fx),
+    const auto qa = local(qw), r = local(rho), en = local(e), pha = local(ph), X = local(fx),
                Y = local(fy), Z = local(fz);
     const Real v0 = vol;
 #pragma GCC ivdep
@@ -1045,7 +1057,7 @@ struct PureCorrector {
       const Real vnew = v0 + dv;
       const Real r0 = r(i, j, k), e0 = en(i, j, k);
       const Real mass = r0 * v0;
-      const Real e1 = pdv_energy(e0, pha(i, j, k), qa(i, j, k), dv, mass);
+      const Real e1 = pdv_energy(e0, pha(i, j, k), dv, qa(i, j, k), mass);
       en(i, j, k) = select_bits(pure, e1, e0);
       r(i, j, k) = select_bits(pure, mass / vnew, r0);
     }
@@ -1138,7 +1150,9 @@ void Hydro::mm_equation_of_state() const {
 
 void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const auto mats = mats_;
-  auto q = s_.q, ph = s_.p_half, rho = s_.rho, e = s_.e, p = s_.p;
+  auto ph = s_.p_half, rho = s_.rho, e = s_.e, p = s_.p;
+  const auto qt = s_.qt;
+  const Sym6At<Field3> Q = sym6_view(qt[0], qt[1], qt[2], qt[3], qt[4], qt[5]);
   auto u = s_.u, v = s_.v, w = s_.w;
   const Real ax = f[0], ay = f[1], az = f[2];
   const BurnHook bh = burn_hook(burn_.get());
@@ -1146,9 +1160,9 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const mat::MaterialState& mm = *mm_;
   with_pure_columns(
       mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
-      MixedPredictor{mats, bh, q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
+      MixedPredictor{mats, bh, Q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
         return PurePredictor<decltype(burn)::value>{
-            EosTable(mats), mm.compact().mat, u, v, w, rho, e, p, q, ph, bf, ax, ay, az, vol,
+            EosTable(mats), mm.compact().mat, u, v, w, rho, e, p, qt, ph, bf, ax, ay, az, vol,
             bh.material};
       });
 }
@@ -1161,16 +1175,16 @@ void Hydro::mm_corrector(Real vol) {
   const Real fmin = opt_.min_fraction;
   const Real sfloor = opt_.solid_floor;
   const BurnHook bh = burn_hook(burn_.get());
-  auto q = s_.q, rho = s_.rho, e = s_.e, ph = s_.p_half;
+  auto qw = s_.qw, rho = s_.rho, e = s_.e, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
-  const MixedCorrector op{mats, relax, iters, tol, fmin, sfloor, bh, q, rho, e, fx, fy, fz, vol};
+  const MixedCorrector op{mats, relax, iters, tol, fmin, sfloor, bh, qw, rho, e, fx, fy, fz, vol};
   const std::array<int, 3> lo = all_lo(), hi = all_hi(mesh_);
   if (mm_->kind() == mat::LayoutKind::Dense) {
     mm_->for_cells("lagrange::corrector", lo, hi, op);
     return;
   }
   for_columns("lagrange::corrector[pure]", lo.data(), hi.data(),
-              PureCorrector{mm_->compact().mat, q, rho, e, ph, fx, fy, fz, vol});
+              PureCorrector{mm_->compact().mat, qw, rho, e, ph, fx, fy, fz, vol});
   mm_->for_mixed("lagrange::corrector", lo, hi, op);
 }
 

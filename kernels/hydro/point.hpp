@@ -1,5 +1,7 @@
 // Point functions of the staggered hydro scheme: they see a few numbers, never a view or a loop.
 #pragma once
+#include <limits>
+
 #include "core/math.hpp"
 
 namespace mp::hydro {
@@ -38,10 +40,126 @@ KOKKOS_INLINE_FUNCTION Real face_value(Real up, Real donor, Real down, Real sigm
 }
 
 // Specific internal energy after the volume change dv of a cell (or material) of mass `mass`
-// under pressure p and viscosity q: the Lagrangian p dV work, shared by the single- and
-// multi-material predictor and corrector.
-KOKKOS_INLINE_FUNCTION Real pdv_energy(Real e, Real p, Real q, Real dv, Real mass) {
-  return e - (p + q) * dv / mass;
+// under pressure p, taking `wq` of viscous work (viscous_work below, or a material's share of
+// it): the Lagrangian work, shared by the single- and multi-material predictor and corrector.
+KOKKOS_INLINE_FUNCTION Real pdv_energy(Real e, Real p, Real dv, Real wq, Real mass) {
+  return e - (p * dv + wq) / mass;
+}
+
+// The tensor artificial viscosity (issue #16; docs/numerics.md, "Tensor viscosity"). A scalar
+// q added to the pressure acts in every direction: in a converging shock it also does work on
+// the gas's tangential compression, 2 u/r of the volume change in a sphere, which is no shock,
+// and over-heats the shocked gas by a fraction of order (shock width) / r (Noh's plateau was
+// -29 % at 64^3 with the KE fix). The viscous stress is instead Q = q S: q the scalar
+// viscosity (Christensen-limited, as before), S a direction tensor of trace 1 from the cell's
+// strain rate D,
+//   S = (lambda_max I - D) / (3 lambda_max - tr D),
+// lambda_max the largest eigenvalue of D. S is positive semi-definite, weighs each principal
+// direction by how much more it compresses than the least compressive one, and is exactly n n
+// for a planar compression D = d n n (a 1-D flow: diag(1, 0, 0)) and for a spherical shock
+// (D = diag(d_r, d_t, d_t) in the radial frame: the radial direction alone). Q : D <= 0
+// whenever tr D < 0, so the viscous work is dissipative (Campbell & Shashkov, J. Comput. Phys.
+// 172:739, 2001, take q along the principal directions of the strain rate in the same spirit;
+// Caramana, Shashkov & Whalen, J. Comput. Phys. 144:70, 1998, on why a scalar q heats uniform
+// convergence). Where D is isotropic (every eigenvalue equal) S = I / 3.
+// The six components of a symmetric tensor, in this order:
+struct Sym6 {
+  Real xx, yy, zz, xy, xz, yz;
+};
+inline constexpr const char* kSym6Names[6] = {"xx", "yy", "zz", "xy", "xz", "yz"};
+// Six fields (views or core/columns.hpp local accessors) read and written as one Sym6.
+template <class A>
+struct Sym6At {
+  A xx, yy, zz, xy, xz, yz;
+  KOKKOS_INLINE_FUNCTION Sym6 operator()(int i, int j, int k) const {
+    return {xx(i, j, k), yy(i, j, k), zz(i, j, k), xy(i, j, k), xz(i, j, k), yz(i, j, k)};
+  }
+  KOKKOS_INLINE_FUNCTION void set(int i, int j, int k, const Sym6& s) const {
+    xx(i, j, k) = s.xx;
+    yy(i, j, k) = s.yy;
+    zz(i, j, k) = s.zz;
+    xy(i, j, k) = s.xy;
+    xz(i, j, k) = s.xz;
+    yz(i, j, k) = s.yz;
+  }
+};
+// The largest eigenvalue of a symmetric 3x3 tensor by cyclic Jacobi rotations (Golub & Van
+// Loan, Matrix Computations, 8.5): backward stable, so a double eigenvalue (the tangential pair
+// of a spherical shock) comes out to round-off. The closed trigonometric form of the cubic's
+// roots loses half the digits there (acos near -1), and tensors that differ by round-off, such as
+// the axis-permuted cells of the unsplit remap's symmetry test, gave direction tensors 1e-8 apart.
+KOKKOS_INLINE_FUNCTION Real largest_eigenvalue(const Sym6& d) {
+  Real a[3][3] = {{d.xx, d.xy, d.xz}, {d.xy, d.yy, d.yz}, {d.xz, d.yz, d.zz}};
+  for (int sweep = 0; sweep < 8; ++sweep) {
+    const Real off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+    const Real diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+    if (!(off > std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon() * diag))
+      break;
+    for (int pq = 0; pq < 3; ++pq) {
+      const int p = pq == 2 ? 1 : 0, q = pq == 0 ? 1 : 2;
+      const Real apq = a[p][q];
+      if (apq == 0) continue;
+      // the rotation that zeroes a[p][q]
+      const Real theta = (a[q][q] - a[p][p]) / (2 * apq);
+      const Real t = (theta >= 0 ? Real(1) : Real(-1)) / (mabs(theta) + msqrt(theta * theta + 1));
+      const Real c = 1 / msqrt(t * t + 1), s = t * c;
+      a[p][p] -= t * apq;
+      a[q][q] += t * apq;
+      a[p][q] = a[q][p] = 0;
+      const int r = 3 - p - q;
+      const Real arp = a[r][p], arq = a[r][q];
+      a[r][p] = a[p][r] = c * arp - s * arq;
+      a[r][q] = a[q][r] = s * arp + c * arq;
+    }
+  }
+  return mmax(a[0][0], mmax(a[1][1], a[2][2]));
+}
+
+// S of the strain rate d (components of the symmetric part of the velocity gradient)
+KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
+  // (diagonal, as in every planar flow along an axis: exact)
+  const bool diagonal = d.xy == 0 && d.xz == 0 && d.yz == 0;
+  const Real lmax = diagonal ? mmax(d.xx, mmax(d.yy, d.zz)) : largest_eigenvalue(d);
+  const Real tr = d.xx + d.yy + d.zz;
+  const Real den = 3 * lmax - tr;
+  const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
+  if (!(den > 64 * std::numeric_limits<Real>::epsilon() * scale)) {
+    const Real t = Real(1) / 3;
+    return {t, t, t, 0, 0, 0};
+  }
+  const Real f = Real(1) / den;
+  return {(lmax - d.xx) * f, (lmax - d.yy) * f, (lmax - d.zz) * f, -d.xy * f, -d.xz * f, -d.yz * f};
+}
+
+// Sums over a cell's four nodes on its high side along axis D less those on its low side, of
+// node field a: jump<D>(a, i, j, k) / (4 dx_D) is d a / d x_D over the cell.
+template <int D, class F>
+KOKKOS_INLINE_FUNCTION Real node_jump(const F& a, int i, int j, int k) {
+  if constexpr (D == 0)
+    return a(i + 1, j, k) + a(i + 1, j + 1, k) + a(i + 1, j, k + 1) + a(i + 1, j + 1, k + 1) -
+           (a(i, j, k) + a(i, j + 1, k) + a(i, j, k + 1) + a(i, j + 1, k + 1));
+  else if constexpr (D == 1)
+    return a(i, j + 1, k) + a(i + 1, j + 1, k) + a(i, j + 1, k + 1) + a(i + 1, j + 1, k + 1) -
+           (a(i, j, k) + a(i + 1, j, k) + a(i, j, k + 1) + a(i + 1, j, k + 1));
+  else
+    return a(i, j, k + 1) + a(i + 1, j, k + 1) + a(i, j + 1, k + 1) + a(i + 1, j + 1, k + 1) -
+           (a(i, j, k) + a(i + 1, j, k) + a(i, j + 1, k) + a(i + 1, j + 1, k));
+}
+
+// The work the viscous stress Q of a cell does over a step, sum_ad Q_ad G_ad, G_ad = c_d
+// node_jump<d>(u_a): the velocity gradient times the volume and the step (c_d = step x a
+// quarter of the d-faces' area, as the face fluxes use). dvx, dvy, dvz: the cell's volume
+// change along each axis (its face fluxes, the diagonal terms). The nodes' forces from Q use
+// the same face areas (NodeUpdate), so this is the work Q does on the nodes: total energy is
+// kept to round-off. In a flow along one axis Q has one component and the work is q dv_x.
+template <class F>
+KOKKOS_INLINE_FUNCTION Real viscous_work(const Sym6& Q, Real dvx, Real dvy, Real dvz, const F& u,
+                                         const F& v, const F& w, int i, int j, int k, Real cx,
+                                         Real cy, Real cz) {
+  const Real xy = cy * node_jump<1>(u, i, j, k) + cx * node_jump<0>(v, i, j, k);
+  const Real xz = cz * node_jump<2>(u, i, j, k) + cx * node_jump<0>(w, i, j, k);
+  const Real yz = cz * node_jump<2>(v, i, j, k) + cy * node_jump<1>(w, i, j, k);
+  return Q.xx * dvx + Q.yy * dvy + Q.zz * dvz + (Q.xy * xy + Q.xz * xz + Q.yz * yz);
 }
 
 // The kinetic-energy fix (DeBar; Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992): a

@@ -513,6 +513,7 @@ std::map<std::string, std::string> resolved_numerics(const Scene& s) {
           {"numerics.remap", n.remap},
           {"numerics.viscosity.linear", real(n.q_linear)},
           {"numerics.viscosity.quadratic", real(n.q_quadratic)},
+          {"numerics.viscosity.isotropic", real(n.q_isotropic)},
           {"numerics.ke_fix", n.ke_fix ? "true" : "false"},
           {"numerics.ke_fix_share", n.ke_fix_share},
           {"numerics.samples", std::to_string(n.samples)},
@@ -578,9 +579,10 @@ Scene read_scene(const Deck& deck) {
     s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
     if (n.has("viscosity")) {
       const DeckNode q = n.child("viscosity");
-      q.expect_keys({"linear", "quadratic"});
+      q.expect_keys({"linear", "quadratic", "isotropic"});
       s.numerics.q_linear = q.get_real("linear", 0, 10, s.numerics.q_linear);
       s.numerics.q_quadratic = q.get_real("quadratic", 0, 10, s.numerics.q_quadratic);
+      s.numerics.q_isotropic = q.get_real("isotropic", 0, 1, s.numerics.q_isotropic);
     }
   }
 

@@ -87,10 +87,13 @@ struct TimeSpec {
 };
 
 struct NumericsSpec {
-  std::string advection = "second";   // second | first
-  std::string remap = "split";        // split (alternating sweeps) | unsplit
-  double q_linear = 0.2;              // linear (Landshoff) artificial viscosity coefficient
-  double q_quadratic = 0.75;          // quadratic (von Neumann–Richtmyer) coefficient
+  std::string advection = "second";  // second | first
+  std::string remap = "split";       // split (alternating sweeps) | unsplit
+  double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
+  double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
+  // the isotropic part of the tensor viscosity, Q = q ((1 - b) S + b I): 0 the tensor (the
+  // default), 1 a scalar q added to the pressure (docs/numerics.md, "Tensor viscosity")
+  double q_isotropic = 0.0;
   bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
   std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
   int samples = 4;                    // sub-cell samples per axis for the initial volume fractions

@@ -59,6 +59,14 @@ KOKKOS_INLINE_FUNCTION void inner_run(int k0, int k1, int lo, int hi, int& b, in
   f = k1 < hi ? k1 : hi > b ? hi : b;
 }
 
+// Whether for_columns gives a body whole columns (host backends) or single points (GPU ones):
+// a per-column result is only the column's where it is true.
+#if defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL)
+inline constexpr bool kWholeColumns = false;
+#else
+inline constexpr bool kWholeColumns = true;
+#endif
+
 // body(i, j, k0, k1) for every (i, j, k) of the box [lo, hi): the body runs k from k0 to k1
 // (one call per column on host backends, k1 = k0 + 1 on GPU backends).
 template <class Body>

@@ -327,6 +327,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.order = scene_.numerics.advection == "first" ? 1 : 2;
   opt.q_linear = Real(scene_.numerics.q_linear);
   opt.q_quadratic = Real(scene_.numerics.q_quadratic);
+  opt.q_isotropic = Real(scene_.numerics.q_isotropic);
   opt.cfl = Real(scene_.time.cfl);
   opt.growth = Real(scene_.time.growth);
   opt.dt_max = Real(scene_.time.dt_max);

@@ -47,6 +47,24 @@ inline double l1_pressure(const std::vector<double>& x, const std::vector<double
 
 // The spherically averaged radius where a 3-D octant's density (n^3 cells of size h from the
 // origin, x fastest) falls through `level` from inside, or NaN.
+// The largest mean density of the half-cell radial shells octant_shock_radius bins.
+inline double octant_binned_peak(const std::vector<double>& rho, int n, double h) {
+  std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int b = static_cast<int>(octant_radius(i, j, k, h) / (0.5 * h));
+        if (b < 2 * n) {
+          sum[b] += rho[i + n * (j + n * k)];
+          cnt[b] += 1;
+        }
+      }
+  double peak = 0;
+  for (int b = 0; b < 2 * n; ++b)
+    if (cnt[b] > 0) peak = std::max(peak, sum[b] / cnt[b]);
+  return peak;
+}
+
 inline double octant_shock_radius(const std::vector<double>& rho, int n, double h, double level) {
   std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
   for (int k = 0; k < n; ++k)
