@@ -654,8 +654,10 @@ Health Hydro::lagrange(Real dt, long cycle) {
                      czz = cols(q2), cxy = cols(q3), cxz = cols(q4), cyz = cols(q5);
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
-          // no viscous stress in the four cell columns around: p alone (the same values: Q = 0)
-          if (!(qcol(i - 1, j - 1) | qcol(i, j - 1) | qcol(i - 1, j) | qcol(i, j))) {
+          // Stress: the cells' viscous stress; none in the four cell columns around: p alone
+          // (the same values, Q = 0, without its six loads per cell)
+          const auto run = [&](auto stress) {
+            constexpr bool Stress = decltype(stress)::value;
 #pragma GCC ivdep
             for (int k = k0; k < k1; ++k) {
               NodeUpdate::Corners c8;
@@ -663,35 +665,21 @@ Health Hydro::lagrange(Real dt, long cycle) {
                 for (int ab = 0; ab < 4; ++ab) {
                   const int n = ab + 4 * c, ck = k - 1 + c;
                   const Real pp = pc[ab][ck];
-                  c8.px[n] = pp;
-                  c8.py[n] = pp;
-                  c8.pz[n] = pp;
-                  c8.sxy[n] = 0;
-                  c8.sxz[n] = 0;
-                  c8.syz[n] = 0;
+                  c8.px[n] = Stress ? pp + cxx[ab][ck] : pp;
+                  c8.py[n] = Stress ? pp + cyy[ab][ck] : pp;
+                  c8.pz[n] = Stress ? pp + czz[ab][ck] : pp;
+                  c8.sxy[n] = Stress ? cxy[ab][ck] : Real(0);
+                  c8.sxz[n] = Stress ? cxz[ab][ck] : Real(0);
+                  c8.syz[n] = Stress ? cyz[ab][ck] : Real(0);
                   c8.rc[n] = rcol[ab][ck];
                 }
               node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
             }
-            return;
-          }
-#pragma GCC ivdep
-          for (int k = k0; k < k1; ++k) {
-            NodeUpdate::Corners c8;
-            for (int c = 0; c < 2; ++c)
-              for (int ab = 0; ab < 4; ++ab) {
-                const int n = ab + 4 * c, ck = k - 1 + c;
-                const Real pp = pc[ab][ck];
-                c8.px[n] = pp + cxx[ab][ck];
-                c8.py[n] = pp + cyy[ab][ck];
-                c8.pz[n] = pp + czz[ab][ck];
-                c8.sxy[n] = cxy[ab][ck];
-                c8.sxz[n] = cxz[ab][ck];
-                c8.syz[n] = cyz[ab][ck];
-                c8.rc[n] = rcol[ab][ck];
-              }
-            node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
-          }
+          };
+          if (qcol(i - 1, j - 1) | qcol(i, j - 1) | qcol(i - 1, j) | qcol(i, j))
+            run(std::true_type{});
+          else
+            run(std::false_type{});
         });
   }
   halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
