@@ -176,8 +176,17 @@ double max_diff(const Sym6& a, const Sym6& b) {
 }  // namespace
 
 TEST(TensorViscosity, PlanarFlowsGetTheirAxisExactly) {
-  // a compression along one axis, with or without a transverse expansion: Q acts along it alone,
-  // exactly (a flow along one axis keeps the scalar viscosity's forces and work)
+  // a compression along one axis alone: Q acts along it alone, exactly, whatever its size (a
+  // flow along one axis keeps the scalar viscosity's forces and work)
+  for (const double a : {-2.5, -49.0, -1e-7, -3.3e5, -0.1})
+    for (int d = 0; d < 3; ++d) {
+      const Sym6 s = hydro::compression_direction(
+          {d == 0 ? Real(a) : 0, d == 1 ? Real(a) : 0, d == 2 ? Real(a) : 0, 0, 0, 0});
+      EXPECT_EQ(d == 0 ? s.xx : d == 1 ? s.yy : s.zz, 1) << a << " along " << d;
+      EXPECT_EQ(s.xx + s.yy + s.zz, 1) << a << " along " << d;
+      EXPECT_EQ(s.xy, 0);
+    }
+  // with a transverse expansion the neutral axis takes a share (below), the expanding one none
   const Sym6 x = hydro::compression_direction({-2.5, 0, 0, 0, 0, 0});
   const Sym6 y = hydro::compression_direction({0, -0.3, 0.1, 0, 0, 0});
   const Sym6 z = hydro::compression_direction({0.2, 0, -7, 0, 0, 0});

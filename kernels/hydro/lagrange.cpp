@@ -310,24 +310,29 @@ struct ViscosityColumns {
 // compression_direction), S from the cell's strain rate (the velocity gradient from the
 // face-averaged node jumps, rx = 1 / (4 dx) ...); Q = 0 where q = 0 (no eigenvalue is sought
 // there: most cells of most flows).
-constexpr Real kQNoise = sizeof(Real) == 8 ? Real(1e-10) : Real(1e-4);
 template <class A>
 struct ViscousTensorColumns {
   A u, v, w, q, rho, c;
   Sym6At<std::remove_const_t<A>> Q;
   Real rx, ry, rz, iso;
+  // Whether cell (i, j, k)'s q is more than round-off's. The jumps q sees are differences of
+  // node velocities, so in a gas at rest or in a linear compression (where the limiter leaves
+  // 1 - psi of a few eps) they are |du| <~ 8 eps U, U the speeds around the cell: below
+  // s = 100 eps U, q = rho (c_Q du^2 + c_L c |du|) stays below rho s (c + s). Such a q (76 % of
+  // Sedov's cells at its end) gets no stress, and no eigenvalue is sought for it. U: the
+  // |u| + |v| + |w| of the cell's low and high corner nodes.
+  KOKKOS_INLINE_FUNCTION bool real_q(int i, int j, int k) const {
+    const Real sp = mabs(u(i, j, k)) + mabs(v(i, j, k)) + mabs(w(i, j, k)) +
+                    mabs(u(i + 1, j + 1, k + 1)) + mabs(v(i + 1, j + 1, k + 1)) +
+                    mabs(w(i + 1, j + 1, k + 1));
+    const Real s = 100 * std::numeric_limits<Real>::epsilon() * sp;
+    return q(i, j, k) > rho(i, j, k) * s * (c(i, j, k) + s);
+  }
   // returns whether some cell of the column has a stress; `had`: whether it had one before
   KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k0, int k1, bool had) const {
     int any = 0;
-    // (a q below kQNoise rho c^2 is round-off's: the compressions of a gas at rest, and the
-    // remainder the limiter leaves of a linear one, |du| ~ 4 eps |u|, q / rho c^2 ~ 0.2 x 4 eps
-    // u / c with u / c up to 1e3 in Noh's cold inflow: 1e-10 in double, 1e-4 in float; it gets
-    // no stress)
 #pragma GCC ivdep
-    for (int k = k0; k < k1; ++k) {
-      const Real cc = c(i, j, k);
-      any |= q(i, j, k) > kQNoise * rho(i, j, k) * cc * cc ? 1 : 0;
-    }
+    for (int k = k0; k < k1; ++k) any |= real_q(i, j, k) ? 1 : 0;
     if (!any) {
       // (a column without a stress last time still holds zeros)
       if (had)
@@ -336,9 +341,9 @@ struct ViscousTensorColumns {
       return false;
     }
     for (int k = k0; k < k1; ++k) {
-      const Real qq = q(i, j, k), cc = c(i, j, k);
+      const Real qq = q(i, j, k);
       Sym6 t{0, 0, 0, 0, 0, 0};
-      if (qq > kQNoise * rho(i, j, k) * cc * cc) {
+      if (real_q(i, j, k)) {
         const Sym6 d{node_jump<0>(u, i, j, k) * rx,
                      node_jump<1>(v, i, j, k) * ry,
                      node_jump<2>(w, i, j, k) * rz,

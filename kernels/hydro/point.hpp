@@ -127,8 +127,9 @@ KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
     const Real t = Real(1) / 3;
     return {t, t, t, 0, 0, 0};
   }
-  const Real f = Real(1) / den;
-  return {(lmax - d.xx) * f, (lmax - d.yy) * f, (lmax - d.zz) * f, -d.xy * f, -d.xz * f, -d.yz * f};
+  // (divided, not multiplied by 1 / den: a compression along one axis gets exactly 1 there)
+  return {(lmax - d.xx) / den, (lmax - d.yy) / den, (lmax - d.zz) / den,
+          -d.xy / den,         -d.xz / den,         -d.yz / den};
 }
 
 // Sums over a cell's four nodes on its high side along axis D less those on its low side, of

@@ -45,8 +45,6 @@ inline double l1_pressure(const std::vector<double>& x, const std::vector<double
   return l1_profile(x, p, dx, [&](double xi) { return m.sample(xi, t).p; });
 }
 
-// The spherically averaged radius where a 3-D octant's density (n^3 cells of size h from the
-// origin, x fastest) falls through `level` from inside, or NaN.
 // The largest mean density of the half-cell radial shells octant_shock_radius bins.
 inline double octant_binned_peak(const std::vector<double>& rho, int n, double h) {
   std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
@@ -65,6 +63,8 @@ inline double octant_binned_peak(const std::vector<double>& rho, int n, double h
   return peak;
 }
 
+// The spherically averaged radius where a 3-D octant's density (n^3 cells of size h from the
+// origin, x fastest) falls through `level` from inside, or NaN.
 inline double octant_shock_radius(const std::vector<double>& rho, int n, double h, double level) {
   std::vector<double> sum(2 * n, 0.0), cnt(2 * n, 0.0);
   for (int k = 0; k < n; ++k)
