@@ -1009,6 +1009,7 @@ struct PurePredictor {
   IntField3 mat;
   Field3 u, v, w, rho, e, p;
   std::array<Field3, 6> qt;
+  Kokkos::View<int**, MemSpace> qcol;  // (columns without a viscous stress: no viscous work)
   Field3 ph, bf;
   Real ax, ay, az, vol;
   int bm;
@@ -1020,22 +1021,30 @@ struct PurePredictor {
     const Real fx = ax, fy = ay, fz = az, v0 = vol;
     const bool he = mr == bm;
     const eos::Eos eq = tab.template at<K>(mr);
+    const auto loop = [&](auto stress) {
 #pragma GCC ivdep
-    for (int k = k0; k < k1; ++k) {
-      const CellFaceFluxes ff = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz);
-      const Real dv = ff.net();
-      const Real v_half = v0 + dv;
-      const Real mass = r(i, j, k) * v0;
-      const Real wq = viscous_work(Q(i, j, k), ff.xh - ff.xl, ff.yh - ff.yl, ff.zh - ff.zl, U, V, W,
-                                   i, j, k, fx, fy, fz);
-      const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), dv, wq, mass);
-      Real pm = eq.template pressure_cut<K>(mass / v_half, e_half);
-      if constexpr (Burn) {
-        const Real fv = f(i, j, k);
-        pm = he ? pm * fv : pm;
+      for (int k = k0; k < k1; ++k) {
+        const CellFaceFluxes ff = cell_face_fluxes(U, V, W, i, j, k, fx, fy, fz);
+        const Real dv = ff.net();
+        const Real v_half = v0 + dv;
+        const Real mass = r(i, j, k) * v0;
+        Real wq = 0;
+        if constexpr (decltype(stress)::value)
+          wq = viscous_work(Q(i, j, k), ff.xh - ff.xl, ff.yh - ff.yl, ff.zh - ff.zl, U, V, W, i, j,
+                            k, fx, fy, fz);
+        const Real e_half = pdv_energy(en(i, j, k), pa(i, j, k), dv, wq, mass);
+        Real pm = eq.template pressure_cut<K>(mass / v_half, e_half);
+        if constexpr (Burn) {
+          const Real fv = f(i, j, k);
+          pm = he ? pm * fv : pm;
+        }
+        out(i, j, k) = pm;
       }
-      out(i, j, k) = pm;
-    }
+    };
+    if (qcol(i, j))
+      loop(std::true_type{});
+    else
+      loop(std::false_type{});
   }
 };
 
@@ -1158,13 +1167,26 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const BurnHook bh = burn_hook(burn_.get());
   const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
   const mat::MaterialState& mm = *mm_;
-  with_pure_columns(
-      mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
-      MixedPredictor{mats, bh, Q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
-        return PurePredictor<decltype(burn)::value>{
-            EosTable(mats), mm.compact().mat, u, v, w, rho, e, p, qt, ph, bf, ax, ay, az, vol,
-            bh.material};
-      });
+  with_pure_columns(mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
+                    MixedPredictor{mats, bh, Q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
+                      return PurePredictor<decltype(burn)::value>{EosTable(mats),
+                                                                  mm.compact().mat,
+                                                                  u,
+                                                                  v,
+                                                                  w,
+                                                                  rho,
+                                                                  e,
+                                                                  p,
+                                                                  qt,
+                                                                  s_.qcol,
+                                                                  ph,
+                                                                  bf,
+                                                                  ax,
+                                                                  ay,
+                                                                  az,
+                                                                  vol,
+                                                                  bh.material};
+                    });
 }
 
 void Hydro::mm_corrector(Real vol) {
