@@ -5,6 +5,7 @@ Writes perf/results/hydro.json (every run's JSON, old and new, and the medians) 
 perf/results/hydro.md (the comparison, then the new binary's full report of its last run).
 
   compare_hydro.py OLD_BENCH NEW_BENCH --old-commit SHA --new-commit SHA [--sizes 64]
+                   [--old-label TEXT] [--new-label TEXT]
                    [--cycles 10] [--reps 3] [--note '...'] [--out perf/results] [--name hydro]
 """
 import argparse
@@ -32,6 +33,9 @@ def main():
     ap.add_argument("--cycles", type=int, default=10)
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--note", default="")
+    ap.add_argument("--old-label", default="main at the start of the perf branch",
+                    help="what the old binary is, printed beside its commit")
+    ap.add_argument("--new-label", default="", help="what the new binary is, if not the branch")
     ap.add_argument("--out", default="perf/results")
     ap.add_argument("--name", default="hydro", help="basename of the .md and .json written")
     a = ap.parse_args()
@@ -47,7 +51,8 @@ def main():
                 last_new = out
     sizes = [int(s) for s in a.sizes.split(",")]
     md = ["# bench_hydro: old vs new, side by side in one run", ""]
-    md.append(f"old = {a.old_commit} (main at the start of the perf branch), new = {a.new_commit}; "
+    new_label = f" ({a.new_label})" if a.new_label else ""
+    md.append(f"old = {a.old_commit} ({a.old_label}), new = {a.new_commit}{new_label}; "
               f"{a.reps} alternating runs each (old first in even runs, new first in odd), "
               f"{a.cycles} timed cycles per run; medians over runs. {a.note}")
     md.append("")
