@@ -179,6 +179,9 @@ TEST(Sedov, UnsplitRemapIsSymmetricToRoundOff) {
 struct NohMeasure {
   double plateau = 0, checker = 0, radius = 0;
   int cells = 0;
+  // mean density of the cells whose centres lie at s h <= r < (s + 1) h, s = 0 .. 5 (the wall
+  // heating's shells, as tools/noh_check.py prints them)
+  double shell[6] = {0, 0, 0, 0, 0, 0};
 };
 
 NohMeasure noh_at(int n) {
@@ -192,13 +195,18 @@ NohMeasure noh_at(int n) {
   const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
   const double h = m.dx(0), rs = r.result.time / 3;
   const auto at = [&](int i, int j, int k) { return rho[i + n * (j + n * k)]; };
-  double sum = 0, chk = 0;
-  long above = 0, inner = 0;
+  double sum = 0, chk = 0, shell_sum[6] = {0, 0, 0, 0, 0, 0};
+  long above = 0, inner = 0, shell_cells[6] = {0, 0, 0, 0, 0, 0};
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         if (at(i, j, k) > 40) ++above;
         const double rr = exact::octant_radius(i, j, k, h);
+        const int s = static_cast<int>(rr / h);
+        if (s < 6) {
+          shell_sum[s] += at(i, j, k);
+          ++shell_cells[s];
+        }
         if (!(rr > 0.3 * rs && rr < 0.8 * rs)) continue;
         sum += at(i, j, k);
         ++out.cells;
@@ -213,11 +221,13 @@ NohMeasure noh_at(int n) {
   out.plateau = sum / out.cells / 64 - 1;
   out.checker = chk / inner / 64;
   out.radius = std::cbrt(double(above) * h * h * h * 6 / M_PI) / rs - 1;
+  for (int s = 0; s < 6; ++s) out.shell[s] = shell_cells[s] ? shell_sum[s] / shell_cells[s] : 0;
   std::printf(
       "Noh %d^3 (t = %.3f, %ld cycles): plateau %+.2f %% over %d cells, checkerboard %.2f %%, "
-      "shock radius %+.2f %%\n",
+      "shock radius %+.2f %%, shells %.1f %.1f %.1f %.1f %.1f %.1f\n",
       n, r.result.time, r.result.cycles, 100 * out.plateau, out.cells, 100 * out.checker,
-      100 * out.radius);
+      100 * out.radius, out.shell[0], out.shell[1], out.shell[2], out.shell[3], out.shell[4],
+      out.shell[5]);
   return out;
 }
 
@@ -228,7 +238,11 @@ NohMeasure noh_at(int n) {
 // longer departs from the default numerics. The error is first order in h / R at best (the
 // discrete solution depends on R / h alone), so the bounds are margins on the observations
 // (1.2x on the plateau, 1.1x on the checkerboard) with the finer mesh required to be better on
-// both; issue #16's targets (5 %, 3 %, 2 %) are not met.
+// both; issue #16's targets (5 %, 3 %, 2 %) are not met. The wall heating (Noh's density
+// deficit at the origin) stays within three cells of it: the shells at r >= 3h hold more than
+// 0.75 x 64 = 48 (observed 52.4 .. 58.1 at 48^3, 58.0 .. 60.7 at 64^3; first-order advection's
+// 46.7 .. 47.5 and the scalar viscosity's 44.3 .. 45.6 at 64^3 fail it), and the inner ones do not
+// collapse (observed 39.9 .. 52.4; bound 0.5 x 64).
 TEST(Noh, PlateauConvergesWithTheDefaultNumerics) {
   const NohMeasure a = noh_at(48), b = noh_at(64);
   ASSERT_GT(a.cells, 100);  // (observed 227 and 553)
@@ -240,4 +254,8 @@ TEST(Noh, PlateauConvergesWithTheDefaultNumerics) {
   EXPECT_LT(b.checker, a.checker);
   EXPECT_LT(std::abs(a.radius), 0.03);
   EXPECT_LT(std::abs(b.radius), 0.03);
+  for (const NohMeasure* m : {&a, &b}) {
+    for (int s = 0; s < 3; ++s) EXPECT_GT(m->shell[s], 0.5 * 64) << "shell " << s;
+    for (int s = 3; s < 6; ++s) EXPECT_GT(m->shell[s], 0.75 * 64) << "shell " << s;
+  }
 }
