@@ -1,14 +1,17 @@
 #!/usr/bin/python3
 """Measure a 3-D Noh octant dump against the exact solution (Noh 1987, J. Comput. Phys. 72:78).
 
-    /usr/bin/python3 tools/noh_check.py output/noh/noh_000123.h5 [--json]
+    /usr/bin/python3 tools/noh_check.py output/noh/noh_000123.h5 [--json] [--angles]
 
 gamma = 5/3, rho0 = 1, inflow speed 1, shock radius R = t/3; inside rho = 64, e = 1/2;
 outside rho = (1 + t/r)^2. Prints: plateau mean density over cells with 0.3 R < r < 0.8 R,
 the checkerboard measure (mean |rho - mean of its 6 face neighbours| / 64 over the same cells),
 the shock radius from the volume of cells above rho = 40 (halfway between 16 and 64, octant
 volume pi R^3 / 6), the plateau energy mean, and the radial profile of the innermost cells
-(wall heating: the density deficit next to the origin).
+(wall heating: the density deficit next to the origin). With --angles also the plateau's
+anisotropy (docs/numerics.md, "Tensor viscosity"): mean density and energy of the plateau cells
+within 20 degrees of an axis and of the diagonal (1,1,1), and the mean density of the plateau
+cells by their distance in cells from the nearest axis (0, 1, ... 9: the axis band).
 """
 import argparse
 import json
@@ -48,8 +51,25 @@ def analyse(path):
         m = (r >= s * h) & (r < (s + 1) * h)
         if np.any(m):
             shells.append(float(rho[m].mean()))
+    # anisotropy: cones about the axes and the diagonal, the band about the nearest axis
+    plat = (r > 0.3 * R) & (r < 0.8 * R)
+    rs_ = np.where(r > 0, r, 1.0)
+    axis_cos = np.maximum(np.maximum(X, Y), Z) / rs_
+    diag_cos = (X + Y + Z) / (np.sqrt(3.0) * rs_)
+    cos20 = np.cos(np.radians(20.0))
+    ax = plat & (axis_cos > cos20)
+    dg = plat & (diag_cos > cos20)
+    # distance from the nearest axis: the axis is the largest coordinate's
+    dist = np.sqrt(r * r - np.maximum(np.maximum(X, Y), Z) ** 2) / h
+    band = []
+    for b in range(10):
+        m = plat & (dist >= b) & (dist < b + 1)
+        band.append(float(rho[m].mean()) if np.any(m) else None)
     return {
         "file": path,
+        "axis_cone": [float(rho[ax].mean()), float(e[ax].mean())] if np.any(ax) else None,
+        "diagonal_cone": [float(rho[dg].mean()), float(e[dg].mean())] if np.any(dg) else None,
+        "axis_band": band,
         "cells": [int(nx), int(ny), int(nz)],
         "t": t,
         "plateau_mean": float(rho[win].mean()),
@@ -66,6 +86,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("files", nargs="+")
     ap.add_argument("--json", action="store_true")
+    ap.add_argument("--angles", action="store_true", help="also the axis/diagonal anisotropy")
     a = ap.parse_args()
     res = [analyse(p) for p in a.files]
     if a.json:
@@ -77,6 +98,12 @@ def main():
               f"checker {100 * d['checkerboard']:5.2f} % R_s {d['shock_radius']:.4f} "
               f"({100 * d['shock_radius_rel_error']:+5.2f} %) inner "
               + " ".join(f"{v:.1f}" for v in d["inner_shells"]))
+        if a.angles:
+            ac, dc = d["axis_cone"], d["diagonal_cone"]
+            cone = lambda c: f"{c[0]:.1f} / {c[1]:.3f}" if c else "-"
+            print(f"      within 20 deg of an axis rho/e {cone(ac)}, of the diagonal {cone(dc)}; "
+                  "by cells from the nearest axis "
+                  + " ".join("-" if v is None else f"{v:.1f}" for v in d["axis_band"]))
 
 
 if __name__ == "__main__":
