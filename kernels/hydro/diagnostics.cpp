@@ -24,6 +24,7 @@ struct CflCells {
   A c, q, rho, u, v, w;
   Real dx[3];
   Real cfl, cfl_u;
+  Real c_lin;  // the viscosity's linear coefficient (the viscous stability bound below)
 
   // the largest |velocity| over the cell's 8 nodes. fabs, not mabs: GCC threads mabs's branch
   // through the chain of maxima and leaves the loop branchy. The two differ only in the sign
@@ -67,6 +68,19 @@ struct CflCells {
           dt = dt_sum < dt ? dt_sum : dt;
         }
         dt *= cfl;
+        // The linear viscosity q = c_L rho c |du| is a diffusion of coefficient ~ c_L c dx with
+        // an explicit limit of its own that c_eff (second order in a small wave's amplitude)
+        // does not see: where the viscosity acts, the step is also bounded by the combined
+        // acoustic-viscous limit dx / (b + sqrt(b^2 + c_eff^2) + |u|), b = c_L c (docs/numerics.md,
+        // "Time step"). Without it an undamped acoustic wave grew 9-80x at cfl 0.95-1.0. At
+        // b = 0.2 c it binds only above cfl ~0.8 (1 / (0.2 + sqrt(1.04)) = 0.82): the decks'
+        // cfl 0.3-0.5 get their steps bit for bit.
+        const Real b = q(i, j, k) > 0 ? c_lin * c(i, j, k) : Real(0);
+        const Real cv = b + msqrt(b * b + ceff * ceff);
+        Real dv = dx[0] / (cv + vx + Real(1e-30));
+        dv = mmin(dv, dx[1] / (cv + vy + Real(1e-30)));
+        dv = mmin(dv, dx[2] / (cv + vz + Real(1e-30)));
+        dt = mmin(dt, dv);
       }
       dt_out[k - kb] = dt;
       sum_out[k - kb] = sum;
@@ -83,6 +97,7 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   const bool unsplit = opt_.unsplit;
   const bool separate = opt_.separate_limits;
   const Real cfl_u = opt_.cfl_transport;
+  const Real c_lin = opt_.q_linear;
   const int nlx = g.nl[0], nly = g.nl[1], ng = g.ng;
   using MinLoc = Kokkos::MinLoc<Real, long>;
   typename MinLoc::value_type best;
@@ -97,7 +112,7 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
         const auto ca = local(c);
         const CflCells<decltype(ca)> cells{
             ca,  local(q), local(rho), local(u), local(v), local(w), {dx[0], dx[1], dx[2]},
-            cfl, cfl_u};
+            cfl, cfl_u,    c_lin};
         constexpr int kChunk = 32;
         Real dts[kChunk], sums[kChunk];
         for (int kb = k0; kb < k1; kb += kChunk) {
