@@ -51,19 +51,17 @@ def analyse(path):
         m = (r >= s * h) & (r < (s + 1) * h)
         if np.any(m):
             shells.append(float(rho[m].mean()))
-    # anisotropy: cones about the axes and the diagonal, the band about the nearest axis
-    plat = (r > 0.3 * R) & (r < 0.8 * R)
+    # anisotropy over the plateau window: cones about the axes and the diagonal, and the band
+    # about the nearest axis (the axis of the largest coordinate)
     rs_ = np.where(r > 0, r, 1.0)
-    axis_cos = np.maximum(np.maximum(X, Y), Z) / rs_
-    diag_cos = (X + Y + Z) / (np.sqrt(3.0) * rs_)
+    along = np.maximum(np.maximum(X, Y), Z)
     cos20 = np.cos(np.radians(20.0))
-    ax = plat & (axis_cos > cos20)
-    dg = plat & (diag_cos > cos20)
-    # distance from the nearest axis: the axis is the largest coordinate's
-    dist = np.sqrt(r * r - np.maximum(np.maximum(X, Y), Z) ** 2) / h
+    ax = win & (along / rs_ > cos20)
+    dg = win & ((X + Y + Z) / (np.sqrt(3.0) * rs_) > cos20)
+    dist = np.sqrt(r * r - along ** 2) / h
     band = []
     for b in range(10):
-        m = plat & (dist >= b) & (dist < b + 1)
+        m = win & (dist >= b) & (dist < b + 1)
         band.append(float(rho[m].mean()) if np.any(m) else None)
     return {
         "file": path,

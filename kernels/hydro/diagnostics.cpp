@@ -72,7 +72,7 @@ struct CflCells {
         // an explicit limit of its own that c_eff (second order in a small wave's amplitude)
         // does not see: where the viscosity acts, the step is also bounded by the combined
         // acoustic-viscous limit dx / (b + sqrt(b^2 + c_eff^2) + |u|), b = c_L c (docs/numerics.md,
-        // "Time step"). Without it an undamped acoustic wave grew 9-80x at cfl 0.95-1.0. At
+        // "Time step"). Without it an undamped acoustic wave grew 9-84x at cfl 0.95-1.0. At
         // b = 0.2 c it binds only above cfl ~0.8 (1 / (0.2 + sqrt(1.04)) = 0.82): the decks'
         // cfl 0.3-0.5 get their steps bit for bit.
         const Real b = q(i, j, k) > 0 ? c_lin * c(i, j, k) : Real(0);
