@@ -33,6 +33,20 @@ inline std::string input_error(const std::string& name, const std::vector<std::s
   return "";
 }
 
+// A quiet, initialised simulation of a deck from configs/ on `cells` per axis (time.end far
+// away), with `overrides` after those two, for tests that drive Hydro::step themselves.
+inline std::unique_ptr<Simulation> started(const std::string& deck, int cells,
+                                           const std::vector<std::string>& overrides = {}) {
+  const std::string n = std::to_string(cells);
+  std::vector<std::string> ov = {"mesh.cells=[" + n + "," + n + "," + n + "]", "time.end=1e9"};
+  ov.insert(ov.end(), overrides.begin(), overrides.end());
+  RunSettings settings;
+  settings.quiet = true;
+  auto sim = std::make_unique<Simulation>(load_scene(deck, ov), MPI_COMM_WORLD, settings);
+  sim->initialize();
+  return sim;
+}
+
 struct Ran {
   std::unique_ptr<Simulation> sim;
   RunResult result;

@@ -161,6 +161,10 @@ struct Options {
   // the viscous stress Q = q ((1 - b) S + b I), b = q_isotropic (point.hpp): 0 the tensor, 1 the
   // scalar q of a pressure
   Real q_isotropic = 0;
+  // Noh's artificial heat flux (conduction.cpp): the coefficient h of the conduction of
+  // internal energy between face neighbours that the viscosity compresses; 0 turns it off.
+  // Single-material scenes (a multi-material scene ignores it).
+  Real heat_flux = 0;
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
@@ -222,6 +226,11 @@ struct State {
   // per cell column (i, j): 1 where some cell of it has a viscous stress (the Lagrangian
   // kernels skip the stress of the columns without)
   Kokkos::View<int**, MemSpace> qcol;
+  // Noh's heat flux (conduction.cpp; single-material scenes with numerics.heat_flux > 0): each
+  // cell's compressive velocity jump where it converges (0 elsewhere), and a flag the
+  // viscosity raises where any cell of the rank converges
+  Field3 cjump;
+  Kokkos::View<int, MemSpace> converging;
   Field3 qw;  // a multi-material step's viscous work per cell (the corrector's, for its materials)
   Field3 p_half;             // pressure at the half step (predictor)
   Field3 pre_vol, post_vol;  // cell volumes before / after one remap sweep
@@ -327,6 +336,11 @@ class Hydro {
   // Kernel launchers (public: nvcc requires the function enclosing an extended
   // __host__ __device__ lambda to be public).
   void exchange_cells();
+  // Noh's heat flux over a step dt (conduction.cpp), before the Lagrangian step; false where
+  // it did nothing (off, a multi-material scene, no cell with a viscosity).
+  bool heat_flux(Real dt);
+  // whether the scene conducts (Noh's heat flux on, a single material)
+  bool conducts() const { return opt_.heat_flux > 0 && !mm_; }
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   // `next`: the step after this one (nullptr for the last), whose cell volumes the KE fix's
   // launch writes.

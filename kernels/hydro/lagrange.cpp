@@ -315,6 +315,11 @@ struct ViscousTensorColumns {
   A u, v, w, q, rho, c;
   Sym6At<std::remove_const_t<A>> Q;
   Real rx, ry, rz, iso;
+  // Noh's heat flux (conduction.cpp), when `conduct`: cj gets the compressive jump of each
+  // converging cell (point.hpp, converging), 0 elsewhere (not touched otherwise)
+  std::remove_const_t<A> cj;
+  bool conduct;
+  Real cq, cl;
   // Whether cell (i, j, k)'s q matters. The jumps q sees are differences of node velocities, so
   // in a gas at rest or in a linear compression (where the limiter leaves 1 - psi of a few eps)
   // round-off makes |du| <~ 8 eps U, U the speeds around the cell: below s = 100 eps U,
@@ -331,21 +336,26 @@ struct ViscousTensorColumns {
     const Real cc = c(i, j, k);
     return q(i, j, k) > rho(i, j, k) * (s * (cc + s) + Real(1e-12) * cc * cc);
   }
-  // returns whether some cell of the column has a stress; `had`: whether it had one before
-  KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k0, int k1, bool had) const {
+  // returns whether some cell of the column has a stress; `had`: whether it had one before;
+  // `conv`: set where some cell converges (conduct only)
+  KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k0, int k1, bool had, bool& conv) const {
     int any = 0;
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) any |= real_q(i, j, k) ? 1 : 0;
     if (!any) {
       // (a column without a stress last time still holds zeros)
-      if (had)
+      if (had) {
 #pragma GCC ivdep
         for (int k = k0; k < k1; ++k) Q.set(i, j, k, {0, 0, 0, 0, 0, 0});
+        if (conduct)
+          for (int k = k0; k < k1; ++k) cj(i, j, k) = 0;
+      }
       return false;
     }
     for (int k = k0; k < k1; ++k) {
       const Real qq = q(i, j, k);
       Sym6 t{0, 0, 0, 0, 0, 0};
+      Real jc = 0;
       if (real_q(i, j, k)) {
         const Sym6 d{node_jump<0>(u, i, j, k) * rx,
                      node_jump<1>(v, i, j, k) * ry,
@@ -353,11 +363,17 @@ struct ViscousTensorColumns {
                      Real(0.5) * (node_jump<1>(u, i, j, k) * ry + node_jump<0>(v, i, j, k) * rx),
                      Real(0.5) * (node_jump<2>(u, i, j, k) * rz + node_jump<0>(w, i, j, k) * rx),
                      Real(0.5) * (node_jump<2>(v, i, j, k) * rz + node_jump<1>(w, i, j, k) * ry)};
-        const Sym6 s = compression_direction(d);
+        Real ev[3];
+        const Sym6 s = compression_direction(d, ev);
         const Real qt = qq * (1 - iso), qi = qq * iso;
         t = {qt * s.xx + qi, qt * s.yy + qi, qt * s.zz + qi, qt * s.xy, qt * s.xz, qt * s.yz};
+        if (conduct && converging(ev)) {
+          jc = jump_of_q(qq, rho(i, j, k), c(i, j, k), cq, cl);
+          conv = conv || jc > 0;
+        }
       }
       Q.set(i, j, k, t);
+      if (conduct) cj(i, j, k) = jc;
     }
     return true;
   }
@@ -380,6 +396,8 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     s_.qt[c] = mesh.new_field(std::string("viscosity_") + kSym6Names[c], C);
   s_.qcol = Kokkos::View<int**, MemSpace>("viscous_columns", mesh.extent(C, 0), mesh.extent(C, 1));
   s_.p_half = mesh.new_field("pressure_half", C);
+  s_.converging = Kokkos::View<int, MemSpace>("converging_cells");
+  if (eos.size() == 1 && opt.heat_flux > 0) s_.cjump = mesh.new_field("conduction_jump", C);
   s_.pre_vol = mesh.new_field("pre_volume", C);
   s_.post_vol = mesh.new_field("post_volume", C);
   s_.u = mesh.new_field("velocity_x", N);
@@ -557,6 +575,11 @@ void Hydro::viscosity_with(bool with_eos) {
              q5 = s_.qt[5];
   const Real iso = opt_.q_isotropic;
   const auto qcol = s_.qcol;
+  // Noh's heat flux: the converging cells' jumps (a field only where it acts; else a stand-in
+  // never written)
+  const bool conduct = conducts();
+  const auto cj = conduct ? s_.cjump : s_.q;
+  const auto converging = s_.converging;
   const Real tx = Real(0.25) * rx, ty = Real(0.25) * ry, tz = Real(0.25) * rz;
   for_columns(
       with_eos ? "lagrange::eos_viscosity" : "lagrange::viscosity", lo, hi,
@@ -572,9 +595,24 @@ void Hydro::viscosity_with(bool with_eos) {
                                          rx,       ry,       rz,       cq, cl}(i, j, b, f);
         for (int k = f; k < k1; ++k) qa(i, j, k) = 0;
         // the tensor's direction, where q > 0 (a column's q is 0 outside [b, f))
-        const bool any = ViscousTensorColumns<decltype(ra)>{
-            local(u), local(v), local(w), qa, ra, ca, sym6_local(q0, q1, q2, q3, q4, q5),
-            tx,       ty,       tz,       iso}(i, j, k0, k1, !kWholeColumns || qcol(i, j) != 0);
+        bool conv = false;
+        const bool any = ViscousTensorColumns<decltype(ra)>{local(u),
+                                                            local(v),
+                                                            local(w),
+                                                            qa,
+                                                            ra,
+                                                            ca,
+                                                            sym6_local(q0, q1, q2, q3, q4, q5),
+                                                            tx,
+                                                            ty,
+                                                            tz,
+                                                            iso,
+                                                            local(cj),
+                                                            conduct,
+                                                            cq,
+                                                            cl}(
+            i, j, k0, k1, !kWholeColumns || qcol(i, j) != 0, conv);
+        if (conv) Kokkos::atomic_exchange(&converging(), 1);
         // (per point on a GPU backend: every column marked, nothing skipped)
         qcol(i, j) = kWholeColumns ? int(any) : 1;
       });
@@ -777,6 +815,10 @@ Health Hydro::lagrange(Real dt, long cycle) {
 
 Health Hydro::step(Real dt, long cycle) {
   Health h;
+  if (opt_.heat_flux > 0) {
+    ProfileRegion r("hydro::heat_flux");
+    heat_flux(dt);
+  }
   {
     ProfileRegion r("hydro::lagrange");
     h = lagrange(dt, cycle);

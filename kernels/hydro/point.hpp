@@ -83,12 +83,13 @@ struct Sym6At {
     yz(i, j, k) = s.yz;
   }
 };
-// The largest eigenvalue of a symmetric 3x3 tensor by cyclic Jacobi rotations (Golub & Van
+// The eigenvalues of a symmetric 3x3 tensor by cyclic Jacobi rotations (Golub & Van
 // Loan, Matrix Computations, 8.5): backward stable, so a double eigenvalue (the tangential pair
 // of a spherical shock) comes out to round-off. The closed trigonometric form of the cubic's
 // roots loses half the digits there (acos near -1), and tensors that differ by round-off, such as
 // the axis-permuted cells of the unsplit remap's symmetry test, gave direction tensors 1e-8 apart.
-KOKKOS_INLINE_FUNCTION Real largest_eigenvalue(const Sym6& d) {
+// (in the order the rotations leave them; largest_eigenvalue below)
+KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
   Real a[3][3] = {{d.xx, d.xy, d.xz}, {d.xy, d.yy, d.yz}, {d.xz, d.yz, d.zz}};
   for (int sweep = 0; sweep < 8; ++sweep) {
     const Real off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
@@ -112,14 +113,29 @@ KOKKOS_INLINE_FUNCTION Real largest_eigenvalue(const Sym6& d) {
       a[r][q] = a[q][r] = s * arp + c * arq;
     }
   }
-  return mmax(a[0][0], mmax(a[1][1], a[2][2]));
+  ev[0] = a[0][0];
+  ev[1] = a[1][1];
+  ev[2] = a[2][2];
+}
+KOKKOS_INLINE_FUNCTION Real largest_eigenvalue(const Sym6& d) {
+  Real ev[3];
+  eigenvalues(d, ev);
+  return mmax(ev[0], mmax(ev[1], ev[2]));
 }
 
-// S of the strain rate d (components of the symmetric part of the velocity gradient)
-KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
+// S of the strain rate d (components of the symmetric part of the velocity gradient); ev: d's
+// eigenvalues
+KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d, Real ev[3]) {
   // (diagonal, as in every planar flow along an axis: exact)
   const bool diagonal = d.xy == 0 && d.xz == 0 && d.yz == 0;
-  const Real lmax = diagonal ? mmax(d.xx, mmax(d.yy, d.zz)) : largest_eigenvalue(d);
+  if (diagonal) {
+    ev[0] = d.xx;
+    ev[1] = d.yy;
+    ev[2] = d.zz;
+  } else {
+    eigenvalues(d, ev);
+  }
+  const Real lmax = mmax(ev[0], mmax(ev[1], ev[2]));
   const Real tr = d.xx + d.yy + d.zz;
   const Real den = 3 * lmax - tr;
   const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
@@ -130,6 +146,32 @@ KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
   // (divided, not multiplied by 1 / den: a compression along one axis gets exactly 1 there)
   return {(lmax - d.xx) / den, (lmax - d.yy) / den, (lmax - d.zz) / den,
           -d.xy / den,         -d.xz / den,         -d.yz / den};
+}
+KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
+  Real ev[3];
+  return compression_direction(d, ev);
+}
+
+// Noh's heat flux (conduction.cpp) acts in converging compressions: where the strain rate's
+// middle eigenvalue compresses too, by more than kConverging of the most compressive one. A
+// planar compression has exactly 0 there, a diverging shock (Sedov's) a positive one. Across a
+// converging shock of radius R and width w the tangential convergence is about w / R of the
+// normal compression, so 0.01 keeps shocks up to about a hundred cells of radius, where the
+// entropy error the flux treats is at most about 1 % (docs/numerics.md, "Artificial heat flux").
+inline constexpr Real kConverging = Real(0.01);
+KOKKOS_INLINE_FUNCTION bool converging(const Real ev[3]) {
+  const Real lo = mmin(ev[0], mmin(ev[1], ev[2])), hi = mmax(ev[0], mmax(ev[1], ev[2]));
+  const Real mid = ev[0] + ev[1] + ev[2] - lo - hi;
+  return lo < 0 && mid < kConverging * lo;
+}
+
+// The compressive velocity jump J that gives the viscosity q in a cell of density r and sound
+// speed c: q = r (cq J^2 + cl c J), solved without cancellation (cq = 0 allowed).
+KOKKOS_INLINE_FUNCTION Real jump_of_q(Real q, Real r, Real c, Real cq, Real cl) {
+  if (!(q > 0) || !(r > 0)) return 0;
+  const Real x = q / r, b = cl * c;
+  const Real den = b + msqrt(b * b + 4 * cq * x);
+  return den > 0 ? 2 * x / den : Real(0);
 }
 
 // Sums over a cell's four nodes on its high side along axis D less those on its low side, of

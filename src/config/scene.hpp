@@ -94,6 +94,8 @@ struct NumericsSpec {
   // the isotropic part of the tensor viscosity, Q = q ((1 - b) S + b I): 0 the tensor (the
   // default), 1 a scalar q added to the pressure (docs/numerics.md, "Tensor viscosity")
   double q_isotropic = 0.0;
+  // Noh's artificial heat flux, its coefficient h (kernels/hydro/conduction.cpp); 0 off
+  double heat_flux = 16.0;
   bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
   std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
   int samples = 4;                    // sub-cell samples per axis for the initial volume fractions

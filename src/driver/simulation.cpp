@@ -328,6 +328,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.q_linear = Real(scene_.numerics.q_linear);
   opt.q_quadratic = Real(scene_.numerics.q_quadratic);
   opt.q_isotropic = Real(scene_.numerics.q_isotropic);
+  opt.heat_flux = Real(scene_.numerics.heat_flux);
   opt.cfl = Real(scene_.time.cfl);
   opt.growth = Real(scene_.time.growth);
   opt.dt_max = Real(scene_.time.dt_max);
@@ -379,7 +380,17 @@ std::vector<std::string> Simulation::modules() const {
                : scene_.materials.size() < 2 ? std::string("on")
                : scene_.numerics.ke_fix_share == "mass"
                    ? std::string("on (a node's loss shared by its cells' mass)")
-                   : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")));
+                   : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")) +
+              // Noh's heat flux (kernels/hydro/conduction.cpp): single-material scenes
+              (scene_.numerics.heat_flux > 0 && scene_.materials.size() < 2
+                   ? ", heat flux h = " +
+                         [&] {
+                           std::ostringstream os;
+                           os << scene_.numerics.heat_flux;
+                           return os.str();
+                         }() +
+                         " in converging shocks"
+                   : std::string()));
   if (scene_.numerics.void_density > 0) {
     std::ostringstream os;
     os << "void: a material below " << scene_.numerics.void_density
