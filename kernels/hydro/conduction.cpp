@@ -73,13 +73,24 @@ struct ReachOf {
       r.hi[d] = -1;
     }
   }
-  KOKKOS_INLINE_FUNCTION void join(volatile Reach& r, const volatile Reach& o) const {
+  template <class R, class O>
+  static KOKKOS_INLINE_FUNCTION void merge(R& r, const O& o) {
     if (o.rate > r.rate) r.rate = o.rate;
     for (int d = 0; d < 3; ++d) {
       if (o.lo[d] < r.lo[d]) r.lo[d] = o.lo[d];
       if (o.hi[d] > r.hi[d]) r.hi[d] = o.hi[d];
     }
   }
+  // (Kokkos 3 joins volatile values, Kokkos 4 refuses a volatile join)
+#if KOKKOS_VERSION >= 30700
+  KOKKOS_INLINE_FUNCTION void join(Reach& r, const Reach& o) const {
+    merge(r, o);
+  }
+#else
+  KOKKOS_INLINE_FUNCTION void join(volatile Reach& r, const volatile Reach& o) const {
+    merge(r, o);
+  }
+#endif
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, Reach& r) const {
     if (i == first && j == first && k == first) flag() = 0;
     if (!(kc.J(i, j, k) > 0)) return;
