@@ -88,7 +88,7 @@ struct Sym6At {
 // of a spherical shock) comes out to round-off. The closed trigonometric form of the cubic's
 // roots loses half the digits there (acos near -1), and tensors that differ by round-off, such as
 // the axis-permuted cells of the unsplit remap's symmetry test, gave direction tensors 1e-8 apart.
-// (in the order the rotations leave them; largest_eigenvalue below)
+// (in the order the rotations leave them)
 KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
   Real a[3][3] = {{d.xx, d.xy, d.xz}, {d.xy, d.yy, d.yz}, {d.xz, d.yz, d.zz}};
   for (int sweep = 0; sweep < 8; ++sweep) {
@@ -116,11 +116,6 @@ KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
   ev[0] = a[0][0];
   ev[1] = a[1][1];
   ev[2] = a[2][2];
-}
-KOKKOS_INLINE_FUNCTION Real largest_eigenvalue(const Sym6& d) {
-  Real ev[3];
-  eigenvalues(d, ev);
-  return mmax(ev[0], mmax(ev[1], ev[2]));
 }
 
 // S of the strain rate d (components of the symmetric part of the velocity gradient); ev: d's
