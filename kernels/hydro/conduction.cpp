@@ -109,14 +109,14 @@ struct ReachOf {
 
 }  // namespace
 
-bool Hydro::heat_flux(Real dt) {
-  if (!conducts()) return false;
+int Hydro::heat_flux(Real dt) {
+  if (!conducts()) return 0;
   // any converging cell on any rank (the flag the viscosity launch raised; read without a
   // launch, lowered by the launch below, which runs only when it is up)
   int mine = 0, any = 0;
   Kokkos::deep_copy(mine, s_.converging);
   MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
-  if (!any) return false;
+  if (!any) return 0;
   const Real h = opt_.heat_flux;
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
@@ -130,7 +130,7 @@ bool Hydro::heat_flux(Real dt) {
                           ReachOf{kf, h, vol, s_.converging, Mesh::ng}, reach);
   double local = double(reach.rate), global = 0;
   MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, mesh_.comm());
-  if (!(global > 0)) return false;
+  if (!(global > 0)) return 0;
   // sub-steps: each within every cell's convex-combination bound ds * rate <= 1
   const int n = int(std::ceil(double(dt) * global * (1 + 1e-6)));
   const Real ds = dt / Real(n);
@@ -160,7 +160,7 @@ bool Hydro::heat_flux(Real dt) {
     }
     halo_.exchange({{e, Centering::Cell, {1, 1, 1}}});
   }
-  return true;
+  return n;
 }
 
 }  // namespace mp::hydro

@@ -2,11 +2,13 @@
 // directionally split remap back to the fixed mesh (DESIGN.md §4). Cell-averaged fields live
 // here; per-material state plugs in beside them (the multi-material layouts).
 #pragma once
+
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "burn/module.hpp"
@@ -51,6 +53,110 @@ KOKKOS_INLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a
   return a * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
 }
 
+// ---- The mid-step geometry (Options::mid_geometry; docs/numerics.md, "Mid-step geometry") ----
+// A face whose four nodes move along straight lines by displacements D, bilinear over the face,
+// sweeps the volume
+//   S(D) = h1 h2 <N> + 1/2 <h2 (N dT1/ds - T1 dN/ds) + h1 (N dT2/dt - T2 dN/dt)> + O(|D|^3),
+// N the displacement along the face's normal, T1 and T2 along its two sides (lengths h1, h2;
+// normal, side 1, side 2 right-handed), s and t the unit coordinates along the sides, <> the mean
+// over the face. The first term is face_flux_*'s (the undeformed face); the second, quadratic in
+// D, is what the face's tilting and stretching add: in a flow converging across the face (faces
+// shrinking as they move) it is -dt u / r of the first, the first-order error of the undeformed
+// geometry. For nodal values it is the sum over the nodes of N_n times the first component of
+// face_gradient (the matrices M_A, M_B below are those of the two means).
+//
+// The face's nodes, (s, t) = (0, 0), (1, 0), (0, 1), (1, 1) at a + 2 b: N, T1, T2 from node fields
+// (u, v, w) for the face normal to D at node coordinates (i, j, k) (the low D face of cell
+// (i, j, k)): x faces have sides y, z; y faces z, x; z faces x, y.
+template <int D, class F3>
+KOKKOS_INLINE_FUNCTION void face_nodes(const F3& u, const F3& v, const F3& w, int i, int j, int k,
+                                       Real N[4], Real T1[4], Real T2[4]) {
+  for (int b = 0; b < 2; ++b)
+    for (int a = 0; a < 2; ++a) {
+      const int n = a + 2 * b;
+      if constexpr (D == 0) {
+        N[n] = u(i, j + a, k + b);
+        T1[n] = v(i, j + a, k + b);
+        T2[n] = w(i, j + a, k + b);
+      } else if constexpr (D == 1) {
+        N[n] = v(i + b, j, k + a);
+        T1[n] = w(i + b, j, k + a);
+        T2[n] = u(i + b, j, k + a);
+      } else {
+        N[n] = w(i + a, j + b, k);
+        T1[n] = u(i + a, j + b, k);
+        T2[n] = v(i + a, j + b, k);
+      }
+    }
+}
+// Row n of M_A x and M_B x: <f dg/ds - g df/ds> = f.M_A g and <f dg/dt - g df/dt> = f.M_B g for
+// bilinear f, g given at the nodes (both matrices antisymmetric); form_a, form_b: f.M_A g and
+// f.M_B g.
+template <int n>
+KOKKOS_INLINE_FUNCTION Real ma_row(const Real x[4]) {
+  const Real third = Real(1) / 3, sixth = Real(1) / 6;
+  if constexpr (n == 0) return third * x[1] + sixth * x[3];
+  if constexpr (n == 1) return -third * x[0] - sixth * x[2];
+  if constexpr (n == 2) return sixth * x[1] + third * x[3];
+  if constexpr (n == 3) return -sixth * x[0] - third * x[2];
+}
+template <int n>
+KOKKOS_INLINE_FUNCTION Real mb_row(const Real x[4]) {
+  const Real third = Real(1) / 3, sixth = Real(1) / 6;
+  if constexpr (n == 0) return third * x[2] + sixth * x[3];
+  if constexpr (n == 1) return sixth * x[2] + third * x[3];
+  if constexpr (n == 2) return -third * x[0] - sixth * x[1];
+  if constexpr (n == 3) return -sixth * x[0] - third * x[1];
+}
+KOKKOS_INLINE_FUNCTION Real form_a(const Real f[4], const Real g[4]) {
+  return f[0] * ma_row<0>(g) + f[1] * ma_row<1>(g) + f[2] * ma_row<2>(g) + f[3] * ma_row<3>(g);
+}
+KOKKOS_INLINE_FUNCTION Real form_b(const Real f[4], const Real g[4]) {
+  return f[0] * mb_row<0>(g) + f[1] * mb_row<1>(g) + f[2] * mb_row<2>(g) + f[3] * mb_row<3>(g);
+}
+// The gradient of S's quadratic part with respect to node n's displacements (N_n, T1_n, T2_n) at
+// the displacements given, in the face's axes: the correction of node n's corner vector when
+// the face is moved by them.
+template <int n>
+KOKKOS_INLINE_FUNCTION void face_gradient(const Real N[4], const Real T1[4], const Real T2[4],
+                                          Real h1, Real h2, Real c[3]) {
+  c[0] = Real(0.5) * (h2 * ma_row<n>(T1) + h1 * mb_row<n>(T2));
+  c[1] = -Real(0.5) * h2 * ma_row<n>(N);
+  c[2] = -Real(0.5) * h1 * mb_row<n>(N);
+}
+// (the sides' lengths of a D face)
+template <int D>
+KOKKOS_INLINE_FUNCTION void face_sides(Real hx, Real hy, Real hz, Real& h1, Real& h2) {
+  h1 = D == 0 ? hy : D == 1 ? hz : hx;
+  h2 = D == 0 ? hz : D == 1 ? hx : hy;
+}
+
+// The corrector's volume flux through the D face at node coordinates (i, j, k) on the mid-step
+// geometry: face_flux_* with the time-centred velocities ub plus dt^2 B(u0, ub), B the polar
+// form of S's quadratic part (S(D) = ... + B(D, D)) and u0 the start-of-step velocities. It is
+// the work volume of the node forces that mid_step_force corrects (their corner vectors taken on
+// the faces moved by dt/2 u0: sum_n grad_n S(dt/2 u0) . dt ub = dt^2 B(u0, ub)), so p times it is
+// the forces' work and total energy is kept to round-off; it differs from the face's swept
+// volume S(dt ub) by dt^3 B(u0 - ub, ub) / dt = O(dt^3). `a`: dt times a quarter of the face's
+// area (face_flux_*'s factor), dt2 = dt^2, h the spacings.
+struct SweptFactors {
+  Real ax, ay, az, dt2, hx, hy, hz;
+};
+template <int D, class F3>
+KOKKOS_INLINE_FUNCTION Real mid_flux(const F3& u0, const F3& v0, const F3& w0, const F3& u,
+                                     const F3& v, const F3& w, int i, int j, int k,
+                                     const SweptFactors& s) {
+  Real N0[4], A0[4], B0[4], N[4], A[4], B[4], h1, h2;
+  face_nodes<D>(u0, v0, w0, i, j, k, N0, A0, B0);
+  face_nodes<D>(u, v, w, i, j, k, N, A, B);
+  face_sides<D>(s.hx, s.hy, s.hz, h1, h2);
+  const Real q = h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
+  const Real first = D == 0   ? face_flux_x(u, i, j, k, s.ax)
+                     : D == 1 ? face_flux_y(v, i, j, k, s.ay)
+                              : face_flux_z(w, i, j, k, s.az);
+  return first + Real(0.25) * s.dt2 * q;
+}
+
 // The tensor viscosity's six fields as one Sym6 (point.hpp): as views, or as core/columns.hpp
 // local accessors (in a column's body).
 template <class V>
@@ -76,6 +182,58 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v,
   return {face_flux_x(u, i, j, k, ax), face_flux_x(u, i + 1, j, k, ax),
           face_flux_y(v, i, j, k, ay), face_flux_y(v, i, j + 1, k, ay),
           face_flux_z(w, i, j, k, az), face_flux_z(w, i, j, k + 1, az)};
+}
+// The same on the mid-step geometry (mid_flux; u0 the start-of-step velocities, u the
+// time-centred ones): the corrector's fluxes there. The cell's 8 nodes are loaded once and each
+// face built from them in its own node order, so that the two cells of a face compute it alike
+// (bit for bit).
+template <class F3>
+KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_fluxes(const F3& u0, const F3& v0, const F3& w0,
+                                                      const F3& u, const F3& v, const F3& w, int i,
+                                                      int j, int k, const SweptFactors& s) {
+  // corner (a, b, c) at a + 2 b + 4 c
+  Real cu0[8], cv0[8], cw0[8], cu[8], cv[8], cw[8];
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const int n = a + 2 * b + 4 * c;
+        cu0[n] = u0(i + a, j + b, k + c);
+        cv0[n] = v0(i + a, j + b, k + c);
+        cw0[n] = w0(i + a, j + b, k + c);
+        cu[n] = u(i + a, j + b, k + c);
+        cv[n] = v(i + a, j + b, k + c);
+        cw[n] = w(i + a, j + b, k + c);
+      }
+  // one face from its nodes' corners (face node n = a + 2 b at corner Cn)
+  const auto face = [&](auto c0, auto c1, auto c2, auto c3, const Real* n0, const Real* t10,
+                        const Real* t20, const Real* n1, const Real* t11, const Real* t21,
+                        Real area, Real h1, Real h2) {
+    constexpr int C0 = decltype(c0)::value, C1 = decltype(c1)::value, C2 = decltype(c2)::value,
+                  C3 = decltype(c3)::value;
+    const Real N0[4] = {n0[C0], n0[C1], n0[C2], n0[C3]},
+               A0[4] = {t10[C0], t10[C1], t10[C2], t10[C3]},
+               B0[4] = {t20[C0], t20[C1], t20[C2], t20[C3]},
+               N[4] = {n1[C0], n1[C1], n1[C2], n1[C3]}, A[4] = {t11[C0], t11[C1], t11[C2], t11[C3]},
+               B[4] = {t21[C0], t21[C1], t21[C2], t21[C3]};
+    const Real q = h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
+    return area * (N[0] + N[1] + N[2] + N[3]) + Real(0.25) * s.dt2 * q;
+  };
+  using I0 = std::integral_constant<int, 0>;
+  using I1 = std::integral_constant<int, 1>;
+  using I2 = std::integral_constant<int, 2>;
+  using I3 = std::integral_constant<int, 3>;
+  using I4 = std::integral_constant<int, 4>;
+  using I5 = std::integral_constant<int, 5>;
+  using I6 = std::integral_constant<int, 6>;
+  using I7 = std::integral_constant<int, 7>;
+  // x faces: nodes (i + x, j + a, k + b); y faces: (i + b, j + y, k + a); z faces:
+  // (i + a, j + b, k + z)
+  return {face(I0{}, I2{}, I4{}, I6{}, cu0, cv0, cw0, cu, cv, cw, s.ax, s.hy, s.hz),
+          face(I1{}, I3{}, I5{}, I7{}, cu0, cv0, cw0, cu, cv, cw, s.ax, s.hy, s.hz),
+          face(I0{}, I4{}, I1{}, I5{}, cv0, cw0, cu0, cv, cw, cu, s.ay, s.hz, s.hx),
+          face(I2{}, I6{}, I3{}, I7{}, cv0, cw0, cu0, cv, cw, cu, s.ay, s.hz, s.hx),
+          face(I0{}, I1{}, I2{}, I3{}, cw0, cu0, cv0, cw, cu, cv, s.az, s.hx, s.hy),
+          face(I4{}, I5{}, I6{}, I7{}, cw0, cu0, cv0, cw, cu, cv, s.az, s.hx, s.hy)};
 }
 
 // Which axes a remap step moves (`a*`) and which are still to be remapped, its own included
@@ -165,6 +323,12 @@ struct Options {
   // internal energy between face neighbours that the viscosity compresses; 0 turns it off.
   // Single-material scenes (a multi-material scene ignores it).
   Real heat_flux = 0;
+  // The Lagrangian step's pressure forces on the mid-step geometry (docs/numerics.md, "Mid-step
+  // geometry"): each face's corner vectors at its nodes moved by dt/2 u^n, the cell's work the
+  // forces' work (total energy kept to round-off), its volume change the matching second-order
+  // face volumes. Off: the undeformed cube's faces (first order in dt where flow converges or
+  // diverges across a face). Single-material scenes without strength; the others ignore it.
+  bool mid_geometry = false;
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
@@ -336,9 +500,10 @@ class Hydro {
   // Kernel launchers (public: nvcc requires the function enclosing an extended
   // __host__ __device__ lambda to be public).
   void exchange_cells();
-  // Noh's heat flux over a step dt (conduction.cpp), before the Lagrangian step; false where
-  // it did nothing (off, a multi-material scene, no cell with a viscosity).
-  bool heat_flux(Real dt);
+  // Noh's heat flux over a step dt (conduction.cpp), before the Lagrangian step: the number of
+  // explicit sub-steps it took, 0 where it did nothing (off, a multi-material scene, no
+  // converging cell).
+  int heat_flux(Real dt);
   // whether the scene conducts (Noh's heat flux on, a single material)
   bool conducts() const { return opt_.heat_flux > 0 && !mm_; }
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
@@ -392,6 +557,9 @@ class Hydro {
   unsigned carrier_mask_[kMaxCarriers] = {};
   Field3 carrier_flux_[kMaxCarriers], carrier_rho_[kMaxCarriers];
   State s_;
+  // the mid-step geometry (Options::mid_geometry): the nodes' start-of-step velocities
+  Field3 u0_, v0_, w0_;
+  bool mid_geometry_ = false;
   // The remap step whose cell volumes (pre_vol, post_vol) a fused launch has written ahead (the
   // corrector the first step's, a step's KE fix the next one's), if any.
   bool volumes_ready_ = false;

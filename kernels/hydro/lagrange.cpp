@@ -53,6 +53,57 @@ void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const 
       });
 }
 
+// The mid-step geometry's correction of node (i, j, k)'s force per unit dt / 2 (Options::
+// mid_geometry; docs/numerics.md, "Mid-step geometry"), added to f: over the 12 faces that meet
+// at the node (4 normal to each axis, between its 8 cells), the pressure jump across the face
+// (low cell less high cell) times the correction of the node's corner vector when the face's
+// nodes are moved by u0 (hydro.hpp face_gradient), u0 the start-of-step velocities. The viscous
+// stress keeps the undeformed faces.
+template <int E0, int E1, class F, class P>
+KOKKOS_INLINE_FUNCTION void mid_step_faces(const F& u0, const F& v0, const F& w0, const P& ph,
+                                           int i, int j, int k, Real hx, Real hy, Real hz,
+                                           Real f[3]) {
+  // the node is corner (1 - E0, 1 - E1) of each of the three faces
+  constexpr int n = (1 - E0) + 2 * (1 - E1);
+  Real N[4], T1[4], T2[4], c[3];
+  {  // the x face of cells (i - 1, jp, kp) | (i, jp, kp): sides y, z
+    const int jp = j - 1 + E0, kp = k - 1 + E1;
+    face_nodes<0>(u0, v0, w0, i, jp, kp, N, T1, T2);
+    face_gradient<n>(N, T1, T2, hy, hz, c);
+    const Real dp = ph(i - 1, jp, kp) - ph(i, jp, kp);
+    f[0] += dp * c[0];
+    f[1] += dp * c[1];
+    f[2] += dp * c[2];
+  }
+  {  // the y face of cells (ip, j - 1, kp) | (ip, j, kp): sides z, x
+    const int ip = i - 1 + E1, kp = k - 1 + E0;
+    face_nodes<1>(u0, v0, w0, ip, j, kp, N, T1, T2);
+    face_gradient<n>(N, T1, T2, hz, hx, c);
+    const Real dp = ph(ip, j - 1, kp) - ph(ip, j, kp);
+    f[1] += dp * c[0];
+    f[2] += dp * c[1];
+    f[0] += dp * c[2];
+  }
+  {  // the z face of cells (ip, jp, k - 1) | (ip, jp, k): sides x, y
+    const int ip = i - 1 + E0, jp = j - 1 + E1;
+    face_nodes<2>(u0, v0, w0, ip, jp, k, N, T1, T2);
+    face_gradient<n>(N, T1, T2, hx, hy, c);
+    const Real dp = ph(ip, jp, k - 1) - ph(ip, jp, k);
+    f[2] += dp * c[0];
+    f[0] += dp * c[1];
+    f[1] += dp * c[2];
+  }
+}
+template <class F, class P>
+KOKKOS_INLINE_FUNCTION void mid_step_force(const F& u0, const F& v0, const F& w0, const P& ph,
+                                           int i, int j, int k, Real hx, Real hy, Real hz,
+                                           Real f[3]) {
+  mid_step_faces<0, 0>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
+  mid_step_faces<1, 0>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
+  mid_step_faces<0, 1>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
+  mid_step_faces<1, 1>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
+}
+
 // A node's acceleration and its start- and end-of-step velocities (the point function of
 // Hydro::lagrange's acceleration launches; a functor, not a generic lambda: nvcc allows no
 // generic extended lambda). pha, Q, ra: p at the half step, the viscous stress and rho, as views
@@ -155,7 +206,11 @@ struct CorrectorColumns {
   Real vol, cx, cy, cz;
   StepWeights sw;
   Real vmin;
+  SweptFactors sf;  // (sf.ax .. az are cx .. cz)
+  A un, vn, wn;     // the start-of-step node velocities (mid: the mid-step geometry)
+  int mid;
   KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k) const {
+    if (mid) return cell_mid_fluxes(un, vn, wn, u, v, w, i, j, k, sf);
     return cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
   }
   template <bool Check>
@@ -179,25 +234,36 @@ struct CorrectorColumns {
   }
   // dvs (if not null): each cell's volume change, at k - kb
   KOKKOS_INLINE_FUNCTION void cells(int i, int j, int kb, int ke, Real* dvs) const {
-    if (stress)
-      cells_with<true>(i, j, kb, ke, dvs);
-    else
-      cells_with<false>(i, j, kb, ke, dvs);
+    // (the options as template arguments: each loop straight-line code)
+    if (mid) {
+      if (stress)
+        cells_with<true, true>(i, j, kb, ke, dvs);
+      else
+        cells_with<false, true>(i, j, kb, ke, dvs);
+    } else if (stress) {
+      cells_with<true, false>(i, j, kb, ke, dvs);
+    } else {
+      cells_with<false, false>(i, j, kb, ke, dvs);
+    }
   }
-  template <bool Stress>
+  template <bool Stress, bool Mid>
   KOKKOS_INLINE_FUNCTION void cells_with(int i, int j, int kb, int ke, Real* dvs) const {
 #pragma GCC ivdep
     for (int k = kb; k < ke; ++k) {
-      const CellFaceFluxes f = fluxes(i, j, k);
+      const CellFaceFluxes f = Mid ? cell_mid_fluxes(un, vn, wn, u, v, w, i, j, k, sf)
+                                   : cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
       x(i, j, k) = f.xl;
       y(i, j, k) = f.yl;
       z(i, j, k) = f.zl;
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
       Real wq = 0;
-      if constexpr (Stress)
-        wq = viscous_work(Q(i, j, k), f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, u, v, w, i, j, k, cx,
-                          cy, cz);
+      if constexpr (Stress) {
+        // (the viscous stress's forces keep the undeformed faces: its work on their fluxes)
+        const CellFaceFluxes fl = Mid ? cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz) : f;
+        wq = viscous_work(Q(i, j, k), fl.xh - fl.xl, fl.yh - fl.yl, fl.zh - fl.zl, u, v, w, i, j, k,
+                          cx, cy, cz);
+      }
       if constexpr (Update) {
         const Real mass = rho(i, j, k) * vol;
         e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), dv, wq, mass);
@@ -398,6 +464,13 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.p_half = mesh.new_field("pressure_half", C);
   s_.converging = Kokkos::View<int, MemSpace>("converging_cells");
   if (eos.size() == 1 && opt.heat_flux > 0) s_.cjump = mesh.new_field("conduction_jump", C);
+  // (strength has its own forces on the undeformed faces: the fixed geometry there)
+  mid_geometry_ = eos.size() == 1 && opt.mid_geometry && opt.strength.kind == strength::kNoStrength;
+  if (mid_geometry_) {
+    u0_ = mesh.new_field("velocity_x_start", N);
+    v0_ = mesh.new_field("velocity_y_start", N);
+    w0_ = mesh.new_field("velocity_z_start", N);
+  }
   s_.pre_vol = mesh.new_field("pre_volume", C);
   s_.post_vol = mesh.new_field("post_volume", C);
   s_.u = mesh.new_field("velocity_x", N);
@@ -688,6 +761,14 @@ Health Hydro::lagrange(Real dt, long cycle) {
   } else {
     int lo[3], hi[3];
     mesh_.box(Centering::Node, Region::Owned, lo, hi);
+    if (mid_geometry_) {
+      Kokkos::deep_copy(u0_, u);
+      Kokkos::deep_copy(v0_, v);
+      Kokkos::deep_copy(w0_, w);
+    }
+    const auto u0 = u0_, v0 = v0_, w0 = w0_;
+    const bool mid = mid_geometry_;
+    const Real hx = g.dx[0], hy = g.dx[1], hz = g.dx[2], hdt = half;
     for_columns(
         "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
           // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c
@@ -700,10 +781,12 @@ Health Hydro::lagrange(Real dt, long cycle) {
                      czz = cols(q2), cxy = cols(q3), cxz = cols(q4), cyz = cols(q5);
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
+          const auto U0 = local(u0), V0 = local(v0), W0 = local(w0), P0 = local(ph);
           // Stress: the cells' viscous stress; none in the four cell columns around: p alone
           // (the same values, Q = 0, without its six loads per cell)
-          const auto run = [&](auto stress) {
+          const auto run = [&](auto stress, auto on_mid) {
             constexpr bool Stress = decltype(stress)::value;
+            constexpr bool Mid = decltype(on_mid)::value;
 #pragma GCC ivdep
             for (int k = k0; k < k1; ++k) {
               NodeUpdate::Corners c8;
@@ -719,13 +802,27 @@ Health Hydro::lagrange(Real dt, long cycle) {
                   c8.syz[n] = Stress ? cyz[ab][ck] : Real(0);
                   c8.rc[n] = rcol[ab][ck];
                 }
-              node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+              if constexpr (Mid) {
+                Real f[3] = {0, 0, 0};
+                mid_step_force(U0, V0, W0, P0, i, j, k, hx, hy, hz, f);
+                node_update.template apply<true>(c8, U, V, W, Ub, Vb, Wb, hdt * f[0], hdt * f[1],
+                                                 hdt * f[2], i, j, k);
+              } else {
+                node_update.template apply<false>(c8, U, V, W, Ub, Vb, Wb, 0, 0, 0, i, j, k);
+              }
             }
           };
-          if (qcol(i - 1, j - 1) | qcol(i, j - 1) | qcol(i - 1, j) | qcol(i, j))
-            run(std::true_type{});
-          else
-            run(std::false_type{});
+          const bool st = qcol(i - 1, j - 1) | qcol(i, j - 1) | qcol(i - 1, j) | qcol(i, j);
+          if (mid) {
+            if (st)
+              run(std::true_type{}, std::true_type{});
+            else
+              run(std::false_type{}, std::true_type{});
+          } else if (st) {
+            run(std::true_type{}, std::false_type{});
+          } else {
+            run(std::false_type{}, std::false_type{});
+          }
         });
   }
   halo_.exchange({{u, Centering::Node, {-1, 1, 1}},
@@ -753,6 +850,9 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
               ez = mesh_.extent(Centering::Cell, 2);
     const Real cx = cf[0], cy = cf[1], cz = cf[2];
+    const SweptFactors sf{cx, cy, cz, dt * dt, g.dx[0], g.dx[1], g.dx[2]};
+    const auto u0c = u0_, v0c = v0_, w0c = w0_;
+    const int mid = mid_geometry_ && Update && !has_strength ? 1 : 0;
     const RemapStep first = remap_steps(cycle).front();
     const StepWeights sw = first.weights();
     auto pre = s_.pre_vol, post = s_.post_vol;
@@ -768,7 +868,9 @@ Health Hydro::lagrange(Real dt, long cycle) {
               local(fy),  local(fz),  local(pre), local(post),
               local(rho), local(e),   local(ph),  sym6_local(q0, q1, q2, q3, q4, q5),
               local(qw),  qcol(i, j), vol,        cx,
-              cy,         cz,         sw,         vmin};
+              cy,         cz,         sw,         vmin,
+              sf,         local(u0c), local(v0c), local(w0c),
+              mid};
           // the Lagrangian volumes are checked in the owned cells only: the column in three
           // runs, the middle one checked where the column is owned
           const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];

@@ -329,6 +329,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.q_quadratic = Real(scene_.numerics.q_quadratic);
   opt.q_isotropic = Real(scene_.numerics.q_isotropic);
   opt.heat_flux = Real(scene_.numerics.heat_flux);
+  opt.mid_geometry = scene_.numerics.geometry == "midstep";
   opt.cfl = Real(scene_.time.cfl);
   opt.growth = Real(scene_.time.growth);
   opt.dt_max = Real(scene_.time.dt_max);
@@ -390,7 +391,13 @@ std::vector<std::string> Simulation::modules() const {
                            return os.str();
                          }() +
                          " in converging shocks"
-                   : std::string()));
+                   : std::string()) +
+              // the Lagrangian step's geometry (kernels/hydro/lagrange.cpp): single material,
+              // no strength
+              (scene_.numerics.geometry == "midstep" && scene_.materials.size() < 2 &&
+                       scene_.materials[0].strength.model.empty()
+                   ? ", mid-step geometry"
+                   : ", fixed geometry"));
   if (scene_.numerics.void_density > 0) {
     std::ostringstream os;
     os << "void: a material below " << scene_.numerics.void_density

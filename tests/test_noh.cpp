@@ -1,0 +1,114 @@
+// 3-D verification: Noh's spherical implosion (plateau, checkerboard, shock radius, wall
+// heating) at 64^3 and 96^3, issue #16's resolutions. Its own executable (split from
+// test_blast.cpp, 2026-12-05), so that CTest runs it beside the Sedov tests.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "exact/norms.hpp"
+#include "support.hpp"
+
+using namespace mp;
+
+namespace {
+
+// Noh's spherical implosion (configs/noh.yaml, the default numerics: KE fix on, tensor
+// viscosity, mid-step geometry) at 64^3 and 96^3, measured as tools/noh_check.py does: the plateau
+// mean over 0.3 R < r < 0.8 R (R = t/3; inside it the exact density is 64), the checkerboard (mean
+// |rho - mean of its 6 face neighbours| / 64 over the same cells) and the shock radius from
+// the volume of cells above rho = 40.
+struct NohMeasure {
+  double plateau = 0, checker = 0, radius = 0;
+  int cells = 0;
+  // mean density of the cells whose centres lie at s h <= r < (s + 1) h, s = 0 .. 5 (the wall
+  // heating's shells, as tools/noh_check.py prints them)
+  double shell[6] = {0, 0, 0, 0, 0, 0};
+};
+
+NohMeasure noh_at(int n) {
+  const std::string c = std::to_string(n);
+  auto r =
+      test::run_scene(test::load_scene("noh.yaml", {"mesh.cells=[" + c + "," + c + "," + c + "]"}));
+  NohMeasure out;
+  EXPECT_TRUE(r.result.ok) << r.result.health.what;
+  if (!r.result.ok) return out;
+  const Mesh& m = r.sim->mesh();
+  const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
+  const double h = m.dx(0), rs = r.result.time / 3;
+  const auto at = [&](int i, int j, int k) { return rho[i + n * (j + n * k)]; };
+  double sum = 0, chk = 0, shell_sum[6] = {0, 0, 0, 0, 0, 0};
+  long above = 0, inner = 0, shell_cells[6] = {0, 0, 0, 0, 0, 0};
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (at(i, j, k) > 40) ++above;
+        const double rr = exact::octant_radius(i, j, k, h);
+        const int s = static_cast<int>(rr / h);
+        if (s < 6) {
+          shell_sum[s] += at(i, j, k);
+          ++shell_cells[s];
+        }
+        if (!(rr > 0.3 * rs && rr < 0.8 * rs)) continue;
+        sum += at(i, j, k);
+        ++out.cells;
+        // the checkerboard over the cells with all six neighbours (not on a symmetry plane)
+        if (i == 0 || j == 0 || k == 0) continue;
+        const double mean6 = (at(i - 1, j, k) + at(i + 1, j, k) + at(i, j - 1, k) +
+                              at(i, j + 1, k) + at(i, j, k - 1) + at(i, j, k + 1)) /
+                             6;
+        chk += std::abs(at(i, j, k) - mean6);
+        ++inner;
+      }
+  out.plateau = sum / out.cells / 64 - 1;
+  out.checker = chk / inner / 64;
+  out.radius = std::cbrt(double(above) * h * h * h * 6 / M_PI) / rs - 1;
+  for (int s = 0; s < 6; ++s) out.shell[s] = shell_cells[s] ? shell_sum[s] / shell_cells[s] : 0;
+  std::printf(
+      "Noh %d^3 (t = %.3f, %ld cycles): plateau %+.2f %% over %d cells, checkerboard %.2f %%, "
+      "shock radius %+.2f %%, shells %.1f %.1f %.1f %.1f %.1f %.1f\n",
+      n, r.result.time, r.result.cycles, 100 * out.plateau, out.cells, 100 * out.checker,
+      100 * out.radius, out.shell[0], out.shell[1], out.shell[2], out.shell[3], out.shell[4],
+      out.shell[5]);
+  return out;
+}
+
+}  // namespace
+
+// Issue #16's targets at 64^3 and 96^3, the resolutions it names. Observed (double,
+// 2026-12-05; configs/noh.yaml: the mid-step geometry, Noh's heat flux h = 16): plateau
+// -4.40 / -3.63 %, checkerboard 3.63 / 2.96 %, shock radius +0.75 / +0.69 %, shells 62.7 61.9
+// 63.3 61.3 61.4 61.5 and 62.9 63.6 63.2 62.4 62.2 62.0. Bounds: the plateau within 5 % of 64
+// at both (#16's target) and the finer mesh better; the shock radius within 2 % of t/3 (#16's
+// target); the checkerboard within 1.05x of the observations (3.8 / 3.1 %; #16 asks 3 %, met
+// at 96^3) and falling. With the fixed geometry (numerics.geometry=fixed, docs/numerics.md
+// "Mid-step geometry") the same meshes gave -7.00 / -5.21 %, 3.20 / 2.63 %, +2.28 / +1.85 %:
+// it fails the plateau bound at both and the radius bound at 64^3. Without the heat flux
+// (numerics.heat_flux=0) the checkerboard was 11.09 % at 64^3 and the inner shells 39.9 ..
+// 52.4: it fails the checkerboard and shell bounds. The wall heating (Noh's density deficit at
+// the origin) is gone: every radial shell from the origin out holds more than 0.85 x 64 = 54.4.
+// The error is first order in h / R at best (the discrete solution depends on R / h alone).
+// Until 2026-12-05 the test ran 48^3 and 64^3 with bounds 10.5 / 8.4 % (plateau), 3.75 /
+// 3.52 % (checkerboard) and 3 % (radius).
+// The float build runs 64^3 alone with the same bounds (the 96^3 run takes about 3 min on one
+// thread; the double build covers the pair; float at 64^3, 2026-12-05: -4.40 %, 3.62 %,
+// +0.75 %, the shells as double's to the printed digits).
+TEST(Noh, PlateauConvergesWithTheDefaultNumerics) {
+  const bool both = sizeof(Real) == sizeof(double);
+  const NohMeasure a = noh_at(64);
+  ASSERT_GT(a.cells, 100);  // (observed 553 and 1794)
+  EXPECT_LT(std::abs(a.plateau), 0.05);
+  EXPECT_LT(a.checker, 0.038);
+  EXPECT_LT(std::abs(a.radius), 0.02);
+  for (int s = 0; s < 6; ++s) EXPECT_GT(a.shell[s], 0.85 * 64) << "shell " << s;
+  if (!both) return;
+  const NohMeasure b = noh_at(96);
+  EXPECT_LT(std::abs(b.plateau), 0.05);
+  EXPECT_LT(std::abs(b.plateau), std::abs(a.plateau));
+  EXPECT_LT(b.checker, 0.031);
+  EXPECT_LT(b.checker, a.checker);
+  EXPECT_LT(std::abs(b.radius), 0.02);
+  for (int s = 0; s < 6; ++s) EXPECT_GT(b.shell[s], 0.85 * 64) << "shell " << s;
+}
