@@ -124,38 +124,10 @@ KOKKOS_INLINE_FUNCTION void face_gradient(const Real N[4], const Real T1[4], con
   c[1] = -Real(0.5) * h2 * ma_row<n>(N);
   c[2] = -Real(0.5) * h1 * mb_row<n>(N);
 }
-// (the sides' lengths of a D face)
-template <int D>
-KOKKOS_INLINE_FUNCTION void face_sides(Real hx, Real hy, Real hz, Real& h1, Real& h2) {
-  h1 = D == 0 ? hy : D == 1 ? hz : hx;
-  h2 = D == 0 ? hz : D == 1 ? hx : hy;
-}
-
-// The corrector's volume flux through the D face at node coordinates (i, j, k) on the mid-step
-// geometry: face_flux_* with the time-centred velocities ub plus dt^2 B(u0, ub), B the polar
-// form of S's quadratic part (S(D) = ... + B(D, D)) and u0 the start-of-step velocities. It is
-// the work volume of the node forces that mid_step_force corrects (their corner vectors taken on
-// the faces moved by dt/2 u0: sum_n grad_n S(dt/2 u0) . dt ub = dt^2 B(u0, ub)), so p times it is
-// the forces' work and total energy is kept to round-off; it differs from the face's swept
-// volume S(dt ub) by dt^3 B(u0 - ub, ub) / dt = O(dt^3). `a`: dt times a quarter of the face's
-// area (face_flux_*'s factor), dt2 = dt^2, h the spacings.
+// The step's factors of the mid-step geometry's face corrections: dt^2 and the spacings.
 struct SweptFactors {
-  Real ax, ay, az, dt2, hx, hy, hz;
+  Real dt2, hx, hy, hz;
 };
-template <int D, class F3>
-KOKKOS_INLINE_FUNCTION Real mid_flux(const F3& u0, const F3& v0, const F3& w0, const F3& u,
-                                     const F3& v, const F3& w, int i, int j, int k,
-                                     const SweptFactors& s) {
-  Real N0[4], A0[4], B0[4], N[4], A[4], B[4], h1, h2;
-  face_nodes<D>(u0, v0, w0, i, j, k, N0, A0, B0);
-  face_nodes<D>(u, v, w, i, j, k, N, A, B);
-  face_sides<D>(s.hx, s.hy, s.hz, h1, h2);
-  const Real q = h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
-  const Real first = D == 0   ? face_flux_x(u, i, j, k, s.ax)
-                     : D == 1 ? face_flux_y(v, i, j, k, s.ay)
-                              : face_flux_z(w, i, j, k, s.az);
-  return first + Real(0.25) * s.dt2 * q;
-}
 
 // The tensor viscosity's six fields as one Sym6 (point.hpp): as views, or as core/columns.hpp
 // local accessors (in a column's body).
@@ -183,14 +155,20 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v,
           face_flux_y(v, i, j, k, ay), face_flux_y(v, i, j + 1, k, ay),
           face_flux_z(w, i, j, k, az), face_flux_z(w, i, j, k + 1, az)};
 }
-// The same on the mid-step geometry (mid_flux; u0 the start-of-step velocities, u the
-// time-centred ones): the corrector's fluxes there. The cell's 8 nodes are loaded once and each
-// face built from them in its own node order, so that the two cells of a face compute it alike
-// (bit for bit).
+// The mid-step geometry's corrections of a cell's six face volume fluxes (cell_face_fluxes's
+// order), added to cell_face_fluxes with the time-centred velocities u to give the corrector's
+// fluxes there: dt^2 B(u0, u) per face, B the polar form of S's quadratic part (S(D) = ... +
+// B(D, D)) and u0 the start-of-step velocities. The sum is the work volume of the node forces
+// that mid_step_force corrects (their corner vectors taken on the faces moved by dt/2 u0:
+// sum_n grad_n S(dt/2 u0) . dt u = dt^2 B(u0, u)), so p times it is the forces' work and total
+// energy is kept to round-off; it differs from the face's swept volume S(dt u) by O(dt^3). The
+// cell's 8 nodes are loaded once and each face built from them in its own node order, so that
+// the two cells of a face compute it alike (bit for bit).
 template <class F3>
-KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_fluxes(const F3& u0, const F3& v0, const F3& w0,
-                                                      const F3& u, const F3& v, const F3& w, int i,
-                                                      int j, int k, const SweptFactors& s) {
+KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_corrections(const F3& u0, const F3& v0, const F3& w0,
+                                                           const F3& u, const F3& v, const F3& w,
+                                                           int i, int j, int k,
+                                                           const SweptFactors& s) {
   // corner (a, b, c) at a + 2 b + 4 c
   Real cu0[8], cv0[8], cw0[8], cu[8], cv[8], cw[8];
   for (int c = 0; c < 2; ++c)
@@ -206,8 +184,8 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_fluxes(const F3& u0, const F3& v0
       }
   // one face from its nodes' corners (face node n = a + 2 b at corner Cn)
   const auto face = [&](auto c0, auto c1, auto c2, auto c3, const Real* n0, const Real* t10,
-                        const Real* t20, const Real* n1, const Real* t11, const Real* t21,
-                        Real area, Real h1, Real h2) {
+                        const Real* t20, const Real* n1, const Real* t11, const Real* t21, Real h1,
+                        Real h2) {
     constexpr int C0 = decltype(c0)::value, C1 = decltype(c1)::value, C2 = decltype(c2)::value,
                   C3 = decltype(c3)::value;
     const Real N0[4] = {n0[C0], n0[C1], n0[C2], n0[C3]},
@@ -216,7 +194,7 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_fluxes(const F3& u0, const F3& v0
                N[4] = {n1[C0], n1[C1], n1[C2], n1[C3]}, A[4] = {t11[C0], t11[C1], t11[C2], t11[C3]},
                B[4] = {t21[C0], t21[C1], t21[C2], t21[C3]};
     const Real q = h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
-    return area * (N[0] + N[1] + N[2] + N[3]) + Real(0.25) * s.dt2 * q;
+    return Real(0.25) * s.dt2 * q;
   };
   using I0 = std::integral_constant<int, 0>;
   using I1 = std::integral_constant<int, 1>;
@@ -228,12 +206,12 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_fluxes(const F3& u0, const F3& v0
   using I7 = std::integral_constant<int, 7>;
   // x faces: nodes (i + x, j + a, k + b); y faces: (i + b, j + y, k + a); z faces:
   // (i + a, j + b, k + z)
-  return {face(I0{}, I2{}, I4{}, I6{}, cu0, cv0, cw0, cu, cv, cw, s.ax, s.hy, s.hz),
-          face(I1{}, I3{}, I5{}, I7{}, cu0, cv0, cw0, cu, cv, cw, s.ax, s.hy, s.hz),
-          face(I0{}, I4{}, I1{}, I5{}, cv0, cw0, cu0, cv, cw, cu, s.ay, s.hz, s.hx),
-          face(I2{}, I6{}, I3{}, I7{}, cv0, cw0, cu0, cv, cw, cu, s.ay, s.hz, s.hx),
-          face(I0{}, I1{}, I2{}, I3{}, cw0, cu0, cv0, cw, cu, cv, s.az, s.hx, s.hy),
-          face(I4{}, I5{}, I6{}, I7{}, cw0, cu0, cv0, cw, cu, cv, s.az, s.hx, s.hy)};
+  return {face(I0{}, I2{}, I4{}, I6{}, cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
+          face(I1{}, I3{}, I5{}, I7{}, cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
+          face(I0{}, I4{}, I1{}, I5{}, cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
+          face(I2{}, I6{}, I3{}, I7{}, cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
+          face(I0{}, I1{}, I2{}, I3{}, cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy),
+          face(I4{}, I5{}, I6{}, I7{}, cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy)};
 }
 
 // Which axes a remap step moves (`a*`) and which are still to be remapped, its own included

@@ -206,12 +206,24 @@ struct CorrectorColumns {
   Real vol, cx, cy, cz;
   StepWeights sw;
   Real vmin;
-  SweptFactors sf;  // (sf.ax .. az are cx .. cz)
-  A un, vn, wn;     // the start-of-step node velocities (mid: the mid-step geometry)
+  SweptFactors sf;
+  A un, vn, wn;  // the start-of-step node velocities (mid: the mid-step geometry)
   int mid;
+  // The cell's face fluxes on the undeformed faces (fl: the viscous stress's work) and the
+  // corrector's (fl, plus the mid-step geometry's corrections where Mid).
+  template <bool Mid>
+  KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes_of(int i, int j, int k, CellFaceFluxes& fl) const {
+    fl = cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
+    if constexpr (!Mid) {
+      return fl;
+    } else {
+      const CellFaceFluxes c = cell_mid_corrections(un, vn, wn, u, v, w, i, j, k, sf);
+      return {fl.xl + c.xl, fl.xh + c.xh, fl.yl + c.yl, fl.yh + c.yh, fl.zl + c.zl, fl.zh + c.zh};
+    }
+  }
   KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k) const {
-    if (mid) return cell_mid_fluxes(un, vn, wn, u, v, w, i, j, k, sf);
-    return cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
+    CellFaceFluxes fl;
+    return mid ? fluxes_of<true>(i, j, k, fl) : fluxes_of<false>(i, j, k, fl);
   }
   template <bool Check>
   KOKKOS_INLINE_FUNCTION long run(int i, int j, int k0, int k1) const {
@@ -250,20 +262,18 @@ struct CorrectorColumns {
   KOKKOS_INLINE_FUNCTION void cells_with(int i, int j, int kb, int ke, Real* dvs) const {
 #pragma GCC ivdep
     for (int k = kb; k < ke; ++k) {
-      const CellFaceFluxes f = Mid ? cell_mid_fluxes(un, vn, wn, u, v, w, i, j, k, sf)
-                                   : cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
+      CellFaceFluxes fl;
+      const CellFaceFluxes f = fluxes_of<Mid>(i, j, k, fl);
       x(i, j, k) = f.xl;
       y(i, j, k) = f.yl;
       z(i, j, k) = f.zl;
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
       Real wq = 0;
-      if constexpr (Stress) {
-        // (the viscous stress's forces keep the undeformed faces: its work on their fluxes)
-        const CellFaceFluxes fl = Mid ? cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz) : f;
+      // (the viscous stress's forces keep the undeformed faces: its work on their fluxes)
+      if constexpr (Stress)
         wq = viscous_work(Q(i, j, k), fl.xh - fl.xl, fl.yh - fl.yl, fl.zh - fl.zl, u, v, w, i, j, k,
                           cx, cy, cz);
-      }
       if constexpr (Update) {
         const Real mass = rho(i, j, k) * vol;
         e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), dv, wq, mass);
@@ -850,7 +860,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
               ez = mesh_.extent(Centering::Cell, 2);
     const Real cx = cf[0], cy = cf[1], cz = cf[2];
-    const SweptFactors sf{cx, cy, cz, dt * dt, g.dx[0], g.dx[1], g.dx[2]};
+    const SweptFactors sf{dt * dt, g.dx[0], g.dx[1], g.dx[2]};
     const auto u0c = u0_, v0c = v0_, w0c = w0_;
     const int mid = mid_geometry_ && Update && !has_strength ? 1 : 0;
     const RemapStep first = remap_steps(cycle).front();
