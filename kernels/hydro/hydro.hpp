@@ -41,15 +41,15 @@ KOKKOS_INLINE_FUNCTION Real net_volume_flux(const F& fx, const F& fy, const F& f
 // cell (i, j, k), and the y and z ones. The corrector's launch stores them; a kernel that needs a
 // cell's six faces can compute them here instead and gets the stored values' bits.
 template <class F3>
-KOKKOS_INLINE_FUNCTION Real face_flux_x(const F3& u, int i, int j, int k, Real a) {
+KOKKOS_FORCEINLINE_FUNCTION Real face_flux_x(const F3& u, int i, int j, int k, Real a) {
   return a * (u(i, j, k) + u(i, j + 1, k) + u(i, j, k + 1) + u(i, j + 1, k + 1));
 }
 template <class F3>
-KOKKOS_INLINE_FUNCTION Real face_flux_y(const F3& v, int i, int j, int k, Real a) {
+KOKKOS_FORCEINLINE_FUNCTION Real face_flux_y(const F3& v, int i, int j, int k, Real a) {
   return a * (v(i, j, k) + v(i + 1, j, k) + v(i, j, k + 1) + v(i + 1, j, k + 1));
 }
 template <class F3>
-KOKKOS_INLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a) {
+KOKKOS_FORCEINLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a) {
   return a * (w(i, j, k) + w(i + 1, j, k) + w(i, j + 1, k) + w(i + 1, j + 1, k));
 }
 
@@ -69,8 +69,8 @@ KOKKOS_INLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, Real a
 // (u, v, w) for the face normal to D at node coordinates (i, j, k) (the low D face of cell
 // (i, j, k)): x faces have sides y, z; y faces z, x; z faces x, y.
 template <int D, class F3>
-KOKKOS_INLINE_FUNCTION void face_nodes(const F3& u, const F3& v, const F3& w, int i, int j, int k,
-                                       Real N[4], Real T1[4], Real T2[4]) {
+KOKKOS_FORCEINLINE_FUNCTION void face_nodes(const F3& u, const F3& v, const F3& w, int i, int j,
+                                            int k, Real N[4], Real T1[4], Real T2[4]) {
   for (int b = 0; b < 2; ++b)
     for (int a = 0; a < 2; ++a) {
       const int n = a + 2 * b;
@@ -93,7 +93,7 @@ KOKKOS_INLINE_FUNCTION void face_nodes(const F3& u, const F3& v, const F3& w, in
 // bilinear f, g given at the nodes (both matrices antisymmetric); form_a, form_b: f.M_A g and
 // f.M_B g.
 template <int n>
-KOKKOS_INLINE_FUNCTION Real ma_row(const Real x[4]) {
+KOKKOS_FORCEINLINE_FUNCTION Real ma_row(const Real x[4]) {
   const Real third = Real(1) / 3, sixth = Real(1) / 6;
   if constexpr (n == 0) return third * x[1] + sixth * x[3];
   if constexpr (n == 1) return -third * x[0] - sixth * x[2];
@@ -101,25 +101,25 @@ KOKKOS_INLINE_FUNCTION Real ma_row(const Real x[4]) {
   if constexpr (n == 3) return -sixth * x[0] - third * x[2];
 }
 template <int n>
-KOKKOS_INLINE_FUNCTION Real mb_row(const Real x[4]) {
+KOKKOS_FORCEINLINE_FUNCTION Real mb_row(const Real x[4]) {
   const Real third = Real(1) / 3, sixth = Real(1) / 6;
   if constexpr (n == 0) return third * x[2] + sixth * x[3];
   if constexpr (n == 1) return sixth * x[2] + third * x[3];
   if constexpr (n == 2) return -third * x[0] - sixth * x[1];
   if constexpr (n == 3) return -sixth * x[0] - third * x[1];
 }
-KOKKOS_INLINE_FUNCTION Real form_a(const Real f[4], const Real g[4]) {
+KOKKOS_FORCEINLINE_FUNCTION Real form_a(const Real f[4], const Real g[4]) {
   return f[0] * ma_row<0>(g) + f[1] * ma_row<1>(g) + f[2] * ma_row<2>(g) + f[3] * ma_row<3>(g);
 }
-KOKKOS_INLINE_FUNCTION Real form_b(const Real f[4], const Real g[4]) {
+KOKKOS_FORCEINLINE_FUNCTION Real form_b(const Real f[4], const Real g[4]) {
   return f[0] * mb_row<0>(g) + f[1] * mb_row<1>(g) + f[2] * mb_row<2>(g) + f[3] * mb_row<3>(g);
 }
 // The gradient of S's quadratic part with respect to node n's displacements (N_n, T1_n, T2_n) at
 // the displacements given, in the face's axes: the correction of node n's corner vector when
 // the face is moved by them.
 template <int n>
-KOKKOS_INLINE_FUNCTION void face_gradient(const Real N[4], const Real T1[4], const Real T2[4],
-                                          Real h1, Real h2, Real c[3]) {
+KOKKOS_FORCEINLINE_FUNCTION void face_gradient(const Real N[4], const Real T1[4], const Real T2[4],
+                                               Real h1, Real h2, Real c[3]) {
   c[0] = Real(0.5) * (h2 * ma_row<n>(T1) + h1 * mb_row<n>(T2));
   c[1] = -Real(0.5) * h2 * ma_row<n>(N);
   c[2] = -Real(0.5) * h1 * mb_row<n>(N);
@@ -149,11 +149,24 @@ struct CellFaceFluxes {
   KOKKOS_INLINE_FUNCTION Real net() const { return xh - xl + yh - yl + zh - zl; }
 };
 template <class F3>
-KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v, const F3& w, int i,
-                                                       int j, int k, Real ax, Real ay, Real az) {
+KOKKOS_FORCEINLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v, const F3& w,
+                                                            int i, int j, int k, Real ax, Real ay,
+                                                            Real az) {
   return {face_flux_x(u, i, j, k, ax), face_flux_x(u, i + 1, j, k, ax),
           face_flux_y(v, i, j, k, ay), face_flux_y(v, i, j + 1, k, ay),
           face_flux_z(w, i, j, k, az), face_flux_z(w, i, j, k + 1, az)};
+}
+// One face's B(u0, u) / (dt^2 / 4) for cell_mid_corrections, from the cell's corner values (face
+// node a + 2 b at corner C_{a+2b}; n, t1, t2: the normal and the two sides' components).
+template <int C0, int C1, int C2, int C3>
+KOKKOS_FORCEINLINE_FUNCTION Real mid_face(const Real* n0, const Real* t10, const Real* t20,
+                                          const Real* n1, const Real* t11, const Real* t21, Real h1,
+                                          Real h2) {
+  const Real N0[4] = {n0[C0], n0[C1], n0[C2], n0[C3]}, A0[4] = {t10[C0], t10[C1], t10[C2], t10[C3]},
+             B0[4] = {t20[C0], t20[C1], t20[C2], t20[C3]}, N[4] = {n1[C0], n1[C1], n1[C2], n1[C3]},
+             A[4] = {t11[C0], t11[C1], t11[C2], t11[C3]},
+             B[4] = {t21[C0], t21[C1], t21[C2], t21[C3]};
+  return h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
 }
 // The mid-step geometry's corrections of a cell's six face volume fluxes (cell_face_fluxes's
 // order), added to cell_face_fluxes with the time-centred velocities u to give the corrector's
@@ -165,53 +178,40 @@ KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_face_fluxes(const F3& u, const F3& v,
 // cell's 8 nodes are loaded once and each face built from them in its own node order, so that
 // the two cells of a face compute it alike (bit for bit).
 template <class F3>
-KOKKOS_INLINE_FUNCTION CellFaceFluxes cell_mid_corrections(const F3& u0, const F3& v0, const F3& w0,
-                                                           const F3& u, const F3& v, const F3& w,
-                                                           int i, int j, int k,
-                                                           const SweptFactors& s) {
+KOKKOS_FORCEINLINE_FUNCTION CellFaceFluxes cell_mid_corrections(const F3& u0, const F3& v0,
+                                                                const F3& w0, const F3& u,
+                                                                const F3& v, const F3& w, int i,
+                                                                int j, int k,
+                                                                const SweptFactors& s) {
   // corner (a, b, c) at a + 2 b + 4 c
-  Real cu0[8], cv0[8], cw0[8], cu[8], cv[8], cw[8];
-  for (int c = 0; c < 2; ++c)
-    for (int b = 0; b < 2; ++b)
-      for (int a = 0; a < 2; ++a) {
-        const int n = a + 2 * b + 4 * c;
-        cu0[n] = u0(i + a, j + b, k + c);
-        cv0[n] = v0(i + a, j + b, k + c);
-        cw0[n] = w0(i + a, j + b, k + c);
-        cu[n] = u(i + a, j + b, k + c);
-        cv[n] = v(i + a, j + b, k + c);
-        cw[n] = w(i + a, j + b, k + c);
-      }
-  // one face from its nodes' corners (face node n = a + 2 b at corner Cn)
-  const auto face = [&](auto c0, auto c1, auto c2, auto c3, const Real* n0, const Real* t10,
-                        const Real* t20, const Real* n1, const Real* t11, const Real* t21, Real h1,
-                        Real h2) {
-    constexpr int C0 = decltype(c0)::value, C1 = decltype(c1)::value, C2 = decltype(c2)::value,
-                  C3 = decltype(c3)::value;
-    const Real N0[4] = {n0[C0], n0[C1], n0[C2], n0[C3]},
-               A0[4] = {t10[C0], t10[C1], t10[C2], t10[C3]},
-               B0[4] = {t20[C0], t20[C1], t20[C2], t20[C3]},
-               N[4] = {n1[C0], n1[C1], n1[C2], n1[C3]}, A[4] = {t11[C0], t11[C1], t11[C2], t11[C3]},
-               B[4] = {t21[C0], t21[C1], t21[C2], t21[C3]};
-    const Real q = h2 * (form_a(N0, A) + form_a(N, A0)) + h1 * (form_b(N0, B) + form_b(N, B0));
-    return Real(0.25) * s.dt2 * q;
+  // (written out: a loop over the corners, vectorized on its own, kept GCC from vectorizing the
+  // caller's loop over k)
+  const auto corners = [&](const F3& f, Real c[8]) {
+    c[0] = f(i, j, k);
+    c[1] = f(i + 1, j, k);
+    c[2] = f(i, j + 1, k);
+    c[3] = f(i + 1, j + 1, k);
+    c[4] = f(i, j, k + 1);
+    c[5] = f(i + 1, j, k + 1);
+    c[6] = f(i, j + 1, k + 1);
+    c[7] = f(i + 1, j + 1, k + 1);
   };
-  using I0 = std::integral_constant<int, 0>;
-  using I1 = std::integral_constant<int, 1>;
-  using I2 = std::integral_constant<int, 2>;
-  using I3 = std::integral_constant<int, 3>;
-  using I4 = std::integral_constant<int, 4>;
-  using I5 = std::integral_constant<int, 5>;
-  using I6 = std::integral_constant<int, 6>;
-  using I7 = std::integral_constant<int, 7>;
+  Real cu0[8], cv0[8], cw0[8], cu[8], cv[8], cw[8];
+  corners(u0, cu0);
+  corners(v0, cv0);
+  corners(w0, cw0);
+  corners(u, cu);
+  corners(v, cv);
+  corners(w, cw);
   // x faces: nodes (i + x, j + a, k + b); y faces: (i + b, j + y, k + a); z faces:
   // (i + a, j + b, k + z)
-  return {face(I0{}, I2{}, I4{}, I6{}, cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
-          face(I1{}, I3{}, I5{}, I7{}, cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
-          face(I0{}, I4{}, I1{}, I5{}, cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
-          face(I2{}, I6{}, I3{}, I7{}, cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
-          face(I0{}, I1{}, I2{}, I3{}, cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy),
-          face(I4{}, I5{}, I6{}, I7{}, cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy)};
+  const Real f = Real(0.25) * s.dt2;
+  return {f * mid_face<0, 2, 4, 6>(cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
+          f * mid_face<1, 3, 5, 7>(cu0, cv0, cw0, cu, cv, cw, s.hy, s.hz),
+          f * mid_face<0, 4, 1, 5>(cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
+          f * mid_face<2, 6, 3, 7>(cv0, cw0, cu0, cv, cw, cu, s.hz, s.hx),
+          f * mid_face<0, 1, 2, 3>(cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy),
+          f * mid_face<4, 5, 6, 7>(cw0, cu0, cv0, cw, cu, cv, s.hx, s.hy)};
 }
 
 // Which axes a remap step moves (`a*`) and which are still to be remapped, its own included

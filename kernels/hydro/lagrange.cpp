@@ -59,49 +59,64 @@ void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const 
 // (low cell less high cell) times the correction of the node's corner vector when the face's
 // nodes are moved by u0 (hydro.hpp face_gradient), u0 the start-of-step velocities. The viscous
 // stress keeps the undeformed faces.
-template <int E0, int E1, class F, class P>
-KOKKOS_INLINE_FUNCTION void mid_step_faces(const F& u0, const F& v0, const F& w0, const P& ph,
-                                           int i, int j, int k, Real hx, Real hy, Real hz,
-                                           Real f[3]) {
-  // the node is corner (1 - E0, 1 - E1) of each of the three faces
-  constexpr int n = (1 - E0) + 2 * (1 - E1);
-  Real N[4], T1[4], T2[4], c[3];
-  {  // the x face of cells (i - 1, jp, kp) | (i, jp, kp): sides y, z
-    const int jp = j - 1 + E0, kp = k - 1 + E1;
-    face_nodes<0>(u0, v0, w0, i, jp, kp, N, T1, T2);
-    face_gradient<n>(N, T1, T2, hy, hz, c);
-    const Real dp = ph(i - 1, jp, kp) - ph(i, jp, kp);
-    f[0] += dp * c[0];
-    f[1] += dp * c[1];
-    f[2] += dp * c[2];
-  }
-  {  // the y face of cells (ip, j - 1, kp) | (ip, j, kp): sides z, x
-    const int ip = i - 1 + E1, kp = k - 1 + E0;
-    face_nodes<1>(u0, v0, w0, ip, j, kp, N, T1, T2);
-    face_gradient<n>(N, T1, T2, hz, hx, c);
-    const Real dp = ph(ip, j - 1, kp) - ph(ip, j, kp);
-    f[1] += dp * c[0];
-    f[2] += dp * c[1];
-    f[0] += dp * c[2];
-  }
-  {  // the z face of cells (ip, jp, k - 1) | (ip, jp, k): sides x, y
-    const int ip = i - 1 + E0, jp = j - 1 + E1;
-    face_nodes<2>(u0, v0, w0, ip, jp, k, N, T1, T2);
-    face_gradient<n>(N, T1, T2, hx, hy, c);
-    const Real dp = ph(ip, jp, k - 1) - ph(ip, jp, k);
-    f[2] += dp * c[0];
-    f[0] += dp * c[1];
-    f[1] += dp * c[2];
-  }
+//
+// The four faces normal to axis D lie in the plane of the node's 8 neighbours across them (sides
+// s, t: the face axes of face_nodes). The face in quadrant (a, b) = (+-1, +-1) of the plane has
+// the node at its corner opposite (s + a, t + b), and face_gradient's rows there are
+// a (x(s + a, t) / 3 + x(s + a, t + b) / 6) along s and b (x(s, t + b) / 3 + x(s + a, t + b) / 6)
+// along t; summed over the quadrants with their pressure jumps d_ab, each neighbour is loaded
+// once (20 loads a plane, against 48 face by face):
+//   sum_ab d_ab a (...)_s = [(d++ + d+-) x(s+1, t) - (d-+ + d--) x(s-1, t)] / 3
+//                           + [d++ x++ + d+- x+- - d-+ x-+ - d-- x--] / 6,
+//   sum_ab d_ab b (...)_t = [(d++ + d-+) x(s, t+1) - (d+- + d--) x(s, t-1)] / 3
+//                           + [d++ x++ - d+- x+- + d-+ x-+ - d-- x--] / 6.
+// Then the normal component gains (h2 sum_s(T1) + h1 sum_t(T2)) / 2, side 1 -h2 sum_s(N) / 2 and
+// side 2 -h1 sum_t(N) / 2 (h1, h2 the lengths of the face's sides along s and t).
+template <int D, class F, class P>
+KOKKOS_FORCEINLINE_FUNCTION void mid_step_plane(const F& u0, const F& v0, const F& w0, const P& ph,
+                                                int i, int j, int k, Real h1, Real h2, Real& fn,
+                                                Real& f1, Real& f2) {
+  // node (s + ds, t + dt) of the plane, and the cell of quadrant (a, b) on side c of it (c = 0:
+  // low along D), as mesh indices
+  const auto at = [&](const F& x, int ds, int dt) -> Real {
+    if constexpr (D == 0) return x(i, j + ds, k + dt);
+    if constexpr (D == 1) return x(i + dt, j, k + ds);
+    if constexpr (D == 2) return x(i + ds, j + dt, k);
+  };
+  const auto jump = [&](int a, int b) -> Real {
+    const int cs = (a - 1) / 2, ct = (b - 1) / 2;
+    if constexpr (D == 0) return ph(i - 1, j + cs, k + ct) - ph(i, j + cs, k + ct);
+    if constexpr (D == 1) return ph(i + ct, j - 1, k + cs) - ph(i + ct, j, k + cs);
+    if constexpr (D == 2) return ph(i + cs, j + ct, k - 1) - ph(i + cs, j + ct, k);
+  };
+  const F& N = D == 0 ? u0 : D == 1 ? v0 : w0;
+  const F& T1 = D == 0 ? v0 : D == 1 ? w0 : u0;
+  const F& T2 = D == 0 ? w0 : D == 1 ? u0 : v0;
+  const Real dpp = jump(1, 1), dpm = jump(1, -1), dmp = jump(-1, 1), dmm = jump(-1, -1);
+  const Real third = Real(1) / 3, sixth = Real(1) / 6;
+  const auto sum_s = [&](const F& x) {
+    return third * ((dpp + dpm) * at(x, 1, 0) - (dmp + dmm) * at(x, -1, 0)) +
+           sixth *
+               (dpp * at(x, 1, 1) + dpm * at(x, 1, -1) - dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
+  };
+  const auto sum_t = [&](const F& x) {
+    return third * ((dpp + dmp) * at(x, 0, 1) - (dpm + dmm) * at(x, 0, -1)) +
+           sixth *
+               (dpp * at(x, 1, 1) - dpm * at(x, 1, -1) + dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
+  };
+  const Real half = Real(0.5);
+  fn += half * (h2 * sum_s(T1) + h1 * sum_t(T2));
+  f1 -= half * h2 * sum_s(N);
+  f2 -= half * h1 * sum_t(N);
 }
 template <class F, class P>
-KOKKOS_INLINE_FUNCTION void mid_step_force(const F& u0, const F& v0, const F& w0, const P& ph,
-                                           int i, int j, int k, Real hx, Real hy, Real hz,
-                                           Real f[3]) {
-  mid_step_faces<0, 0>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
-  mid_step_faces<1, 0>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
-  mid_step_faces<0, 1>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
-  mid_step_faces<1, 1>(u0, v0, w0, ph, i, j, k, hx, hy, hz, f);
+KOKKOS_FORCEINLINE_FUNCTION void mid_step_force(const F& u0, const F& v0, const F& w0, const P& ph,
+                                                int i, int j, int k, Real hx, Real hy, Real hz,
+                                                Real f[3]) {
+  // x faces: sides y, z; y faces: z, x; z faces: x, y
+  mid_step_plane<0>(u0, v0, w0, ph, i, j, k, hy, hz, f[0], f[1], f[2]);
+  mid_step_plane<1>(u0, v0, w0, ph, i, j, k, hz, hx, f[1], f[2], f[0]);
+  mid_step_plane<2>(u0, v0, w0, ph, i, j, k, hx, hy, f[2], f[0], f[1]);
 }
 
 // A node's acceleration and its start- and end-of-step velocities (the point function of
@@ -146,9 +161,9 @@ struct NodeUpdate {
   // The same from the node's 8 cells; Strength: the strength forces are added (a template
   // argument: GCC vectorizes no select on a loop-invariant bool).
   template <bool Strength, class F, class G>
-  KOKKOS_INLINE_FUNCTION void apply(const Corners& c8, const F& U, const F& V, const F& W,
-                                    const G& Ub, const G& Vb, const G& Wb, Real force_sx,
-                                    Real force_sy, Real force_sz, int i, int j, int k) const {
+  KOKKOS_FORCEINLINE_FUNCTION void apply(const Corners& c8, const F& U, const F& V, const F& W,
+                                         const G& Ub, const G& Vb, const G& Wb, Real force_sx,
+                                         Real force_sy, Real force_sz, int i, int j, int k) const {
     // A cell below the node along an axis pushes it up, a cell above pushes it down: each axis's
     // sum over the four pairs of cells across the node, as differences, so a field uniform
     // along an axis gives exactly no force along it (a planar flow on a 3-D mesh keeps its
@@ -191,6 +206,42 @@ struct NodeUpdate {
   }
 };
 
+// The mid-step geometry's face volume fluxes over cells (i, j, k0 .. k1 - 1) of a column, each
+// face computed once (Options::mid_geometry; CorrectorColumns reads them): a cell's three low
+// faces, and its high ones at the block's high side (ex, ey, ez: the cell extents), as the
+// undeformed face's flux from the time-centred velocities u plus hydro.hpp
+// cell_mid_corrections's correction (u0: the start-of-step velocities).
+template <class A>
+struct MidFaceColumns {
+  A u, v, w, u0, v0, w0, x, y, z;
+  Real cx, cy, cz;
+  SweptFactors sf;
+  int ex, ey, ez;
+  KOKKOS_FORCEINLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k, Real ax, Real ay, Real az,
+                                                    const SweptFactors& s) const {
+    const CellFaceFluxes f = cell_face_fluxes(u, v, w, i, j, k, ax, ay, az),
+                         c = cell_mid_corrections(u0, v0, w0, u, v, w, i, j, k, s);
+    return {f.xl + c.xl, f.xh + c.xh, f.yl + c.yl, f.yh + c.yh, f.zl + c.zl, f.zh + c.zh};
+  }
+  KOKKOS_FORCEINLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    // (the factors as locals, as in CorrectorColumns::cells_with)
+    const Real ax = cx, ay = cy, az = cz;
+    const SweptFactors s = sf;
+#pragma GCC ivdep
+    for (int k = k0; k < k1; ++k) {
+      const CellFaceFluxes f = fluxes(i, j, k, ax, ay, az, s);
+      x(i, j, k) = f.xl;
+      y(i, j, k) = f.yl;
+      z(i, j, k) = f.zl;
+    }
+    if (i == ex - 1)
+      for (int k = k0; k < k1; ++k) x(i + 1, j, k) = fluxes(i, j, k, ax, ay, az, s).xh;
+    if (j == ey - 1)
+      for (int k = k0; k < k1; ++k) y(i, j + 1, k) = fluxes(i, j, k, ax, ay, az, s).yh;
+    if (k1 == ez) z(i, j, ez) = fluxes(i, j, ez - 1, ax, ay, az, s).zh;
+  }
+};
+
 // The single-material corrector over cells (i, j, kb .. ke - 1) of a column: each cell's six
 // face fluxes (its three low faces stored for the remap), the first remap step's volumes, the
 // full step's energy and density (Update; without it, a multi-material step's faces and
@@ -206,27 +257,24 @@ struct CorrectorColumns {
   Real vol, cx, cy, cz;
   StepWeights sw;
   Real vmin;
-  SweptFactors sf;
-  A un, vn, wn;  // the start-of-step node velocities (mid: the mid-step geometry)
-  int mid;
+  int mid;  // the mid-step geometry: the fluxes stored by MidFaceColumns, read here
   // The cell's face fluxes on the undeformed faces (fl: the viscous stress's work) and the
-  // corrector's (fl, plus the mid-step geometry's corrections where Mid).
+  // corrector's (fl, or where Mid the stored mid-step ones).
   template <bool Mid>
-  KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes_of(int i, int j, int k, CellFaceFluxes& fl) const {
-    fl = cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
-    if constexpr (!Mid) {
+  KOKKOS_FORCEINLINE_FUNCTION CellFaceFluxes fluxes_of(int i, int j, int k, CellFaceFluxes& fl,
+                                                       Real fx, Real fy, Real fz) const {
+    fl = cell_face_fluxes(u, v, w, i, j, k, fx, fy, fz);
+    if constexpr (!Mid)
       return fl;
-    } else {
-      const CellFaceFluxes c = cell_mid_corrections(un, vn, wn, u, v, w, i, j, k, sf);
-      return {fl.xl + c.xl, fl.xh + c.xh, fl.yl + c.yl, fl.yh + c.yh, fl.zl + c.zl, fl.zh + c.zh};
-    }
+    else
+      return {x(i, j, k), x(i + 1, j, k), y(i, j, k), y(i, j + 1, k), z(i, j, k), z(i, j, k + 1)};
   }
+  // (the undeformed geometry's; the mid-step fluxes are stored by MidFaceColumns)
   KOKKOS_INLINE_FUNCTION CellFaceFluxes fluxes(int i, int j, int k) const {
-    CellFaceFluxes fl;
-    return mid ? fluxes_of<true>(i, j, k, fl) : fluxes_of<false>(i, j, k, fl);
+    return cell_face_fluxes(u, v, w, i, j, k, cx, cy, cz);
   }
   template <bool Check>
-  KOKKOS_INLINE_FUNCTION long run(int i, int j, int k0, int k1) const {
+  KOKKOS_FORCEINLINE_FUNCTION long run(int i, int j, int k0, int k1) const {
     if constexpr (!Check) {
       cells(i, j, k0, k1, nullptr);
       return 0;
@@ -245,7 +293,7 @@ struct CorrectorColumns {
     }
   }
   // dvs (if not null): each cell's volume change, at k - kb
-  KOKKOS_INLINE_FUNCTION void cells(int i, int j, int kb, int ke, Real* dvs) const {
+  KOKKOS_FORCEINLINE_FUNCTION void cells(int i, int j, int kb, int ke, Real* dvs) const {
     // (the options as template arguments: each loop straight-line code)
     if (mid) {
       if (stress)
@@ -259,21 +307,26 @@ struct CorrectorColumns {
     }
   }
   template <bool Stress, bool Mid>
-  KOKKOS_INLINE_FUNCTION void cells_with(int i, int j, int kb, int ke, Real* dvs) const {
+  KOKKOS_FORCEINLINE_FUNCTION void cells_with(int i, int j, int kb, int ke, Real* dvs) const {
+    // (the factors as locals: GCC kept reloading them through `this` in the loop, which its
+    // stores might alias, and left the loop scalar)
+    const Real fx = cx, fy = cy, fz = cz;
 #pragma GCC ivdep
     for (int k = kb; k < ke; ++k) {
       CellFaceFluxes fl;
-      const CellFaceFluxes f = fluxes_of<Mid>(i, j, k, fl);
-      x(i, j, k) = f.xl;
-      y(i, j, k) = f.yl;
-      z(i, j, k) = f.zl;
+      const CellFaceFluxes f = fluxes_of<Mid>(i, j, k, fl, fx, fy, fz);
+      if constexpr (!Mid) {
+        x(i, j, k) = f.xl;
+        y(i, j, k) = f.yl;
+        z(i, j, k) = f.zl;
+      }
       step_volumes(vol, f.xh - f.xl, f.yh - f.yl, f.zh - f.zl, sw, pre(i, j, k), post(i, j, k));
       const Real dv = f.net();
       Real wq = 0;
       // (the viscous stress's forces keep the undeformed faces: its work on their fluxes)
       if constexpr (Stress)
         wq = viscous_work(Q(i, j, k), fl.xh - fl.xl, fl.yh - fl.yl, fl.zh - fl.zl, u, v, w, i, j, k,
-                          cx, cy, cz);
+                          fx, fy, fz);
       if constexpr (Update) {
         const Real mass = rho(i, j, k) * vol;
         e(i, j, k) = pdv_energy(e(i, j, k), ph(i, j, k), dv, wq, mass);
@@ -771,12 +824,23 @@ Health Hydro::lagrange(Real dt, long cycle) {
   } else {
     int lo[3], hi[3];
     mesh_.box(Centering::Node, Region::Owned, lo, hi);
-    if (mid_geometry_) {
-      Kokkos::deep_copy(u0_, u);
-      Kokkos::deep_copy(v0_, v);
-      Kokkos::deep_copy(w0_, w);
-    }
     const auto u0 = u0_, v0 = v0_, w0 = w0_;
+    if (mid_geometry_) {
+      // the start-of-step velocities, ghosts included (one launch for the three copies)
+      int alo[3], ahi[3];
+      mesh_.box(Centering::Node, Region::All, alo, ahi);
+      for_columns(
+          "lagrange::start_velocities", alo, ahi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+            const auto U = local(u), V = local(v), W = local(w), U0 = local(u0), V0 = local(v0),
+                       W0 = local(w0);
+#pragma GCC ivdep
+            for (int k = k0; k < k1; ++k) {
+              U0(i, j, k) = U(i, j, k);
+              V0(i, j, k) = V(i, j, k);
+              W0(i, j, k) = W(i, j, k);
+            }
+          });
+    }
     const bool mid = mid_geometry_;
     const Real hx = g.dx[0], hy = g.dx[1], hz = g.dx[2], hdt = half;
     for_columns(
@@ -800,7 +864,11 @@ Health Hydro::lagrange(Real dt, long cycle) {
 #pragma GCC ivdep
             for (int k = k0; k < k1; ++k) {
               NodeUpdate::Corners c8;
+          // (unrolled: vectorized on their own, these loops kept GCC from vectorizing the
+          // loop over k where the stress is loaded)
+#pragma GCC unroll 2
               for (int c = 0; c < 2; ++c)
+#pragma GCC unroll 4
                 for (int ab = 0; ab < 4; ++ab) {
                   const int n = ab + 4 * c, ck = k - 1 + c;
                   const Real pp = pc[ab][ck];
@@ -860,14 +928,26 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
               ez = mesh_.extent(Centering::Cell, 2);
     const Real cx = cf[0], cy = cf[1], cz = cf[2];
-    const SweptFactors sf{dt * dt, g.dx[0], g.dx[1], g.dx[2]};
-    const auto u0c = u0_, v0c = v0_, w0c = w0_;
     const int mid = mid_geometry_ && Update && !has_strength ? 1 : 0;
     const RemapStep first = remap_steps(cycle).front();
     const StepWeights sw = first.weights();
     auto pre = s_.pre_vol, post = s_.post_vol;
     int lo[3], hi[3];
     mesh_.box(Centering::Cell, Region::All, lo, hi);
+    if (mid) {
+      // the mid-step geometry's face fluxes, each face once (the corrector reads them)
+      const SweptFactors sf{dt * dt, g.dx[0], g.dx[1], g.dx[2]};
+      const auto u0c = u0_, v0c = v0_, w0c = w0_;
+      for_columns(
+          "lagrange::mid_faces", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+            const auto U = local(ub);
+            const MidFaceColumns<decltype(U)> faces{U,          local(vb),  local(wb), local(u0c),
+                                                    local(v0c), local(w0c), local(fx), local(fy),
+                                                    local(fz),  cx,         cy,        cz,
+                                                    sf,         ex,         ey,        ez};
+            faces(i, j, k0, k1);
+          });
+    }
     // (k-columns, core/columns.hpp)
     reduce_columns(
         name, lo, hi,
@@ -879,7 +959,6 @@ Health Hydro::lagrange(Real dt, long cycle) {
               local(rho), local(e),   local(ph),  sym6_local(q0, q1, q2, q3, q4, q5),
               local(qw),  qcol(i, j), vol,        cx,
               cy,         cz,         sw,         vmin,
-              sf,         local(u0c), local(v0c), local(w0c),
               mid};
           // the Lagrangian volumes are checked in the owned cells only: the column in three
           // runs, the middle one checked where the column is owned
@@ -892,7 +971,8 @@ Health Hydro::lagrange(Real dt, long cycle) {
           else
             col.template run<false>(i, j, b, f);
           col.template run<false>(i, j, f, k1);
-          // the high faces at the block's high side
+          // the high faces at the block's high side (the mid-step ones are stored)
+          if (mid) return;
           if (i == ex - 1)
             for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
           if (j == ey - 1)

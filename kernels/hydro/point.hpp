@@ -191,9 +191,9 @@ KOKKOS_INLINE_FUNCTION Real node_jump(const F& a, int i, int j, int k) {
 // the same face areas (NodeUpdate), so this is the work Q does on the nodes: total energy is
 // kept to round-off. In a flow along one axis Q has one component and the work is q dv_x.
 template <class F>
-KOKKOS_INLINE_FUNCTION Real viscous_work(const Sym6& Q, Real dvx, Real dvy, Real dvz, const F& u,
-                                         const F& v, const F& w, int i, int j, int k, Real cx,
-                                         Real cy, Real cz) {
+KOKKOS_FORCEINLINE_FUNCTION Real viscous_work(const Sym6& Q, Real dvx, Real dvy, Real dvz,
+                                              const F& u, const F& v, const F& w, int i, int j,
+                                              int k, Real cx, Real cy, Real cz) {
   const Real xy = cy * node_jump<1>(u, i, j, k) + cx * node_jump<0>(v, i, j, k);
   const Real xz = cz * node_jump<2>(u, i, j, k) + cx * node_jump<0>(w, i, j, k);
   const Real yz = cz * node_jump<2>(v, i, j, k) + cy * node_jump<1>(w, i, j, k);
