@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
         const double cells = double(s) * s * s;
         const double rate = cells * cycles / wall;
         // the counted model, summed over the ranks' blocks
-        const std::map<std::string, double> model = perf::cycle_bytes(sim.mesh());
+        const std::map<std::string, double> model =
+            perf::cycle_bytes(sim.mesh(), sim.hydro().mid_geometry());
         double cycle_bytes = 0;
         for (const auto& kv : model) cycle_bytes += kv.second;
         MPI_Allreduce(MPI_IN_PLACE, &cycle_bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
@@ -83,6 +84,7 @@ int main(int argc, char** argv) {
         for (int ph = 0; ph < 5; ++ph) rows << " " << 100 * phase[ph] / wall << " |";
         rows << "\n";
         js << (n ? "," : "") << "\n    {\"cells_per_axis\": " << s << ", \"cells\": " << cells
+           << ", \"geometry\": \"" << (sim.hydro().mid_geometry() ? "midstep" : "fixed") << "\""
            << ", \"cycles\": " << cycles << ", \"seconds_per_cycle\": " << wall / cycles
            << ", \"cell_cycles_per_second\": " << rate
            << ", \"model_bytes_per_cell\": " << cycle_bytes / cells << ", \"model_GBs\": " << gbs
@@ -157,8 +159,9 @@ int main(int argc, char** argv) {
           krows << line;
           if (rank == 0)
             std::printf(
-                "%d^3: %g kernel launches per cycle, %g of them halo (Kokkos Tools count)\n", s,
-                launches, halo_launches);
+                "%d^3: %g kernel launches per cycle, %g of them halo (Kokkos Tools count); %s "
+                "geometry\n",
+                s, launches, halo_launches, sim.hydro().mid_geometry() ? "mid-step" : "fixed");
         }
         js << "}";
       }

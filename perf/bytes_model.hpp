@@ -46,8 +46,9 @@ struct KernelTraffic {
 };
 
 // The single-material split-remap cycle (Hydro::time_step, lagrange, remap x 3 sweeps,
-// equation_of_state, viscosity, check), kernels/hydro at the commit this was counted on.
-inline const std::vector<KernelTraffic>& cycle_table() {
+// equation_of_state, viscosity, check) with the fixed geometry, kernels/hydro at the commit this
+// was counted on.
+inline const std::vector<KernelTraffic>& fixed_cycle_table() {
   static const std::vector<KernelTraffic> t = {
       {"timestep::cfl", Range::CellsOwned, 6, 0, 1, "c q rho u v w ->"},
       // the six face volume fluxes of each cell found from the node velocities in the kernel
@@ -77,6 +78,33 @@ inline const std::vector<KernelTraffic>& cycle_table() {
       {"halo::fill", Range::HaloGhosts, 1, 1, 11, "ghost source -> ghost (per field)"},
   };
   return t;
+}
+
+// The cycle's table; `mid`: with the mid-step geometry (Hydro::mid_geometry), whose Lagrangian
+// step differs: the predictor also copies the start-of-step velocities (u0 v0 w0), the
+// acceleration reads them for its face corrections, lagrange::mid_faces stores each face's flux
+// once from them and the half-step velocities, and the corrector reads those.
+inline const std::vector<KernelTraffic>& cycle_table(bool mid = false) {
+  static const std::vector<KernelTraffic> with_mid = [] {
+    const std::vector<KernelTraffic> rows = {
+        {"lagrange::predictor", Range::CellsAll, 7, 4, 1, "u v w rho e p q -> p_half u0 v0 w0"},
+        {"lagrange::acceleration", Range::NodesOwned, 9, 6, 1,
+         "p_half q rho u v w u0 v0 w0 -> u v w ub vb wb"},
+        {"lagrange::mid_faces", Range::CellsAll, 6, 3, 1, "ub vb wb u0 v0 w0 -> fx fy fz"},
+        {"lagrange::corrector", Range::CellsAll, 10, 4, 1,
+         "ub vb wb rho e p_half q fx fy fz -> e rho pre post"},
+    };
+    std::vector<KernelTraffic> t;
+    for (const KernelTraffic& k : fixed_cycle_table()) {
+      const std::string name = k.name;
+      if (name == "lagrange::predictor")
+        t.insert(t.end(), rows.begin(), rows.end());
+      else if (name != "lagrange::acceleration" && name != "lagrange::corrector")
+        t.push_back(k);
+    }
+    return t;
+  }();
+  return mid ? with_mid : fixed_cycle_table();
 }
 
 // Ghost points x fields of the cycle's 11 field exchanges: the view's extent less its
@@ -137,9 +165,9 @@ inline double cycle_bytes(const Mesh& m, const KernelTraffic& k) {
 }
 
 // Bytes per cycle of every kernel of the table, by name (a fused kernel has a row per part).
-inline std::map<std::string, double> cycle_bytes(const Mesh& m) {
+inline std::map<std::string, double> cycle_bytes(const Mesh& m, bool mid = false) {
   std::map<std::string, double> out;
-  for (const auto& k : cycle_table()) out[k.name] += cycle_bytes(m, k);
+  for (const auto& k : cycle_table(mid)) out[k.name] += cycle_bytes(m, k);
   return out;
 }
 

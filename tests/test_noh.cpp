@@ -78,7 +78,7 @@ NohMeasure noh_at(int n) {
 }  // namespace
 
 // Issue #16's targets at 64^3 and 96^3, the resolutions it names. Observed (double,
-// 2026-12-05; configs/noh.yaml: the mid-step geometry, Noh's heat flux h = 16): plateau
+// 2026-12-05; configs/noh.yaml with the default mid-step geometry and heat flux h = 16): plateau
 // -4.40 / -3.63 %, checkerboard 3.63 / 2.96 %, shock radius +0.75 / +0.69 %, shells 62.7 61.9
 // 63.3 61.3 61.4 61.5 and 62.9 63.6 63.2 62.4 62.2 62.0. Bounds: the plateau within 5 % of 64
 // at both (#16's target) and the finer mesh better; the shock radius within 2 % of t/3 (#16's

@@ -67,7 +67,9 @@ KOKKOS_FORCEINLINE_FUNCTION Real face_flux_z(const F3& w, int i, int j, int k, R
 //
 // The face's nodes, (s, t) = (0, 0), (1, 0), (0, 1), (1, 1) at a + 2 b: N, T1, T2 from node fields
 // (u, v, w) for the face normal to D at node coordinates (i, j, k) (the low D face of cell
-// (i, j, k)): x faces have sides y, z; y faces z, x; z faces x, y.
+// (i, j, k)): x faces have sides y, z; y faces z, x; z faces x, y. (face_nodes and
+// face_gradient give the node forces face by face, the definition that mid_step_force sums
+// plane by plane; tests/test_lagrange.cpp checks that the two agree.)
 template <int D, class F3>
 KOKKOS_FORCEINLINE_FUNCTION void face_nodes(const F3& u, const F3& v, const F3& w, int i, int j,
                                             int k, Real N[4], Real T1[4], Real T2[4]) {
@@ -124,6 +126,72 @@ KOKKOS_FORCEINLINE_FUNCTION void face_gradient(const Real N[4], const Real T1[4]
   c[1] = -Real(0.5) * h2 * ma_row<n>(N);
   c[2] = -Real(0.5) * h1 * mb_row<n>(N);
 }
+// The mid-step geometry's correction of node (i, j, k)'s force per unit dt / 2 (Options::
+// mid_geometry; docs/numerics.md, "Mid-step geometry"), added to f: over the 12 faces that meet
+// at the node (4 normal to each axis, between its 8 cells), the pressure jump across the face
+// (low cell less high cell) times the correction of the node's corner vector when the face's
+// nodes are moved by u0 (face_gradient), u0 the start-of-step velocities. The viscous stress
+// keeps the undeformed faces.
+//
+// The four faces normal to axis D lie in the plane of the node's 8 neighbours across them (sides
+// s, t: the face axes of face_nodes). The face in quadrant (a, b) = (+-1, +-1) of the plane has
+// the node at its corner opposite (s + a, t + b), and face_gradient's rows there are
+// a (x(s + a, t) / 3 + x(s + a, t + b) / 6) along s and b (x(s, t + b) / 3 + x(s + a, t + b) / 6)
+// along t; summed over the quadrants with their pressure jumps d_ab, each neighbour is loaded
+// once (20 loads a plane, against 48 face by face):
+//   sum_ab d_ab a (...)_s = [(d++ + d+-) x(s+1, t) - (d-+ + d--) x(s-1, t)] / 3
+//                           + [d++ x++ + d+- x+- - d-+ x-+ - d-- x--] / 6,
+//   sum_ab d_ab b (...)_t = [(d++ + d-+) x(s, t+1) - (d+- + d--) x(s, t-1)] / 3
+//                           + [d++ x++ - d+- x+- + d-+ x-+ - d-- x--] / 6.
+// Then the normal component gains (h2 sum_s(T1) + h1 sum_t(T2)) / 2, side 1 -h2 sum_s(N) / 2 and
+// side 2 -h1 sum_t(N) / 2 (h1, h2 the lengths of the face's sides along s and t).
+template <int D, class F, class P>
+KOKKOS_FORCEINLINE_FUNCTION void mid_step_plane(const F& u0, const F& v0, const F& w0, const P& ph,
+                                                int i, int j, int k, Real h1, Real h2, Real& fn,
+                                                Real& f1, Real& f2) {
+  // node (s + ds, t + dt) of the plane, and the cell of quadrant (a, b) on side c of it (c = 0:
+  // low along D), as mesh indices
+  const auto at = [&](const F& x, int ds, int dt) -> Real {
+    if constexpr (D == 0) return x(i, j + ds, k + dt);
+    if constexpr (D == 1) return x(i + dt, j, k + ds);
+    if constexpr (D == 2) return x(i + ds, j + dt, k);
+  };
+  const auto jump = [&](int a, int b) -> Real {
+    const int cs = (a - 1) / 2, ct = (b - 1) / 2;
+    if constexpr (D == 0) return ph(i - 1, j + cs, k + ct) - ph(i, j + cs, k + ct);
+    if constexpr (D == 1) return ph(i + ct, j - 1, k + cs) - ph(i + ct, j, k + cs);
+    if constexpr (D == 2) return ph(i + cs, j + ct, k - 1) - ph(i + cs, j + ct, k);
+  };
+  const F& N = D == 0 ? u0 : D == 1 ? v0 : w0;
+  const F& T1 = D == 0 ? v0 : D == 1 ? w0 : u0;
+  const F& T2 = D == 0 ? w0 : D == 1 ? u0 : v0;
+  const Real dpp = jump(1, 1), dpm = jump(1, -1), dmp = jump(-1, 1), dmm = jump(-1, -1);
+  const Real third = Real(1) / 3, sixth = Real(1) / 6;
+  const auto sum_s = [&](const F& x) {
+    return third * ((dpp + dpm) * at(x, 1, 0) - (dmp + dmm) * at(x, -1, 0)) +
+           sixth *
+               (dpp * at(x, 1, 1) + dpm * at(x, 1, -1) - dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
+  };
+  const auto sum_t = [&](const F& x) {
+    return third * ((dpp + dmp) * at(x, 0, 1) - (dpm + dmm) * at(x, 0, -1)) +
+           sixth *
+               (dpp * at(x, 1, 1) - dpm * at(x, 1, -1) + dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
+  };
+  const Real half = Real(0.5);
+  fn += half * (h2 * sum_s(T1) + h1 * sum_t(T2));
+  f1 -= half * h2 * sum_s(N);
+  f2 -= half * h1 * sum_t(N);
+}
+template <class F, class P>
+KOKKOS_FORCEINLINE_FUNCTION void mid_step_force(const F& u0, const F& v0, const F& w0, const P& ph,
+                                                int i, int j, int k, Real hx, Real hy, Real hz,
+                                                Real f[3]) {
+  // x faces: sides y, z; y faces: z, x; z faces: x, y
+  mid_step_plane<0>(u0, v0, w0, ph, i, j, k, hy, hz, f[0], f[1], f[2]);
+  mid_step_plane<1>(u0, v0, w0, ph, i, j, k, hz, hx, f[1], f[2], f[0]);
+  mid_step_plane<2>(u0, v0, w0, ph, i, j, k, hx, hy, f[2], f[0], f[1]);
+}
+
 // The step's factors of the mid-step geometry's face corrections: dt^2 and the spacings.
 struct SweptFactors {
   Real dt2, hx, hy, hz;
@@ -306,7 +374,7 @@ struct Options {
   // forces' work (total energy kept to round-off), its volume change the matching second-order
   // face volumes. Off: the undeformed cube's faces (first order in dt where flow converges or
   // diverges across a face). Single-material scenes without strength; the others ignore it.
-  bool mid_geometry = false;
+  bool mid_geometry = true;  // (the scene key numerics.geometry, default midstep)
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
@@ -425,6 +493,8 @@ class Hydro {
   State& state() { return s_; }
   const State& state() const { return s_; }
   const Options& options() const { return opt_; }
+  // whether this step runs the mid-step geometry (Options::mid_geometry, where it applies)
+  bool mid_geometry() const { return mid_geometry_; }
   // Switches the time-step rule (the scene reader does not set it; perf/timestep_study.cpp).
   void set_time_limits(bool separate, Real cfl_transport) {
     opt_.separate_limits = separate;

@@ -15,21 +15,45 @@ namespace {
 // The single-material predictor over every cell of `mesh`'s block: each cell's half-step density
 // and energy from the start-of-step volume fluxes of its six faces (computed here from the node
 // velocities, `a*` the half step times a quarter of the face areas: no stored face fluxes and no
-// launch for them), its half-step pressure from `pressure(rho, e, i, j, k)`.
+// launch for them), its half-step pressure from `pressure(rho, e, i, j, k)`. With `start`
+// (the mid-step geometry), the launch also copies the start-of-step velocities into start[0..2]
+// at every node, ghosts included: each cell column its low node column, the block's last ones
+// the high nodes too (a launch of its own saved; the velocities are loaded here anyway).
 template <class Pressure>
 void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const Field3& w, Real ax,
                       Real ay, Real az, const Field3& rho, const Field3& e, const Field3& p,
                       const std::array<Field3, 6>& qt, const Kokkos::View<int**, MemSpace>& qcol,
-                      const Field3& ph, Real vol, const Pressure& pressure) {
+                      const Field3& ph, Real vol, const Pressure& pressure,
+                      const std::array<Field3, 3>* start = nullptr) {
   // (k-columns, core/columns.hpp)
   int lo[3], hi[3];
   mesh.box(Centering::Cell, Region::All, lo, hi);
   const auto q0 = qt[0], q1 = qt[1], q2 = qt[2], q3 = qt[3], q4 = qt[4], q5 = qt[5];
+  const bool copy = start != nullptr;
+  const auto u0 = copy ? (*start)[0] : u, v0 = copy ? (*start)[1] : v, w0 = copy ? (*start)[2] : w;
+  const int ihi = hi[0], jhi = hi[1], khi = hi[2];
   for_columns(
       "lagrange::predictor", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         const auto U = local(u), V = local(v), W = local(w), ra = local(rho), ea = local(e),
                    pa = local(p), out = local(ph);
         const auto Q = sym6_local(q0, q1, q2, q3, q4, q5);
+        if (copy) {
+          const auto U0 = local(u0), V0 = local(v0), W0 = local(w0);
+          // node column (a, b) over k0 .. kn - 1
+          const auto nodes = [&](int a, int b) {
+            const int kn = k1 == khi ? k1 + 1 : k1;
+#pragma GCC ivdep
+            for (int k = k0; k < kn; ++k) {
+              U0(a, b, k) = U(a, b, k);
+              V0(a, b, k) = V(a, b, k);
+              W0(a, b, k) = W(a, b, k);
+            }
+          };
+          nodes(i, j);
+          if (i == ihi - 1) nodes(i + 1, j);
+          if (j == jhi - 1) nodes(i, j + 1);
+          if (i == ihi - 1 && j == jhi - 1) nodes(i + 1, j + 1);
+        }
         // (a column without a viscous stress does no viscous work: Q = 0, the work not summed)
         const auto run = [&](auto stress) {
 #pragma GCC ivdep
@@ -51,72 +75,6 @@ void predictor_kernel(const Mesh& mesh, const Field3& u, const Field3& v, const 
         else
           run(std::false_type{});
       });
-}
-
-// The mid-step geometry's correction of node (i, j, k)'s force per unit dt / 2 (Options::
-// mid_geometry; docs/numerics.md, "Mid-step geometry"), added to f: over the 12 faces that meet
-// at the node (4 normal to each axis, between its 8 cells), the pressure jump across the face
-// (low cell less high cell) times the correction of the node's corner vector when the face's
-// nodes are moved by u0 (hydro.hpp face_gradient), u0 the start-of-step velocities. The viscous
-// stress keeps the undeformed faces.
-//
-// The four faces normal to axis D lie in the plane of the node's 8 neighbours across them (sides
-// s, t: the face axes of face_nodes). The face in quadrant (a, b) = (+-1, +-1) of the plane has
-// the node at its corner opposite (s + a, t + b), and face_gradient's rows there are
-// a (x(s + a, t) / 3 + x(s + a, t + b) / 6) along s and b (x(s, t + b) / 3 + x(s + a, t + b) / 6)
-// along t; summed over the quadrants with their pressure jumps d_ab, each neighbour is loaded
-// once (20 loads a plane, against 48 face by face):
-//   sum_ab d_ab a (...)_s = [(d++ + d+-) x(s+1, t) - (d-+ + d--) x(s-1, t)] / 3
-//                           + [d++ x++ + d+- x+- - d-+ x-+ - d-- x--] / 6,
-//   sum_ab d_ab b (...)_t = [(d++ + d-+) x(s, t+1) - (d+- + d--) x(s, t-1)] / 3
-//                           + [d++ x++ - d+- x+- + d-+ x-+ - d-- x--] / 6.
-// Then the normal component gains (h2 sum_s(T1) + h1 sum_t(T2)) / 2, side 1 -h2 sum_s(N) / 2 and
-// side 2 -h1 sum_t(N) / 2 (h1, h2 the lengths of the face's sides along s and t).
-template <int D, class F, class P>
-KOKKOS_FORCEINLINE_FUNCTION void mid_step_plane(const F& u0, const F& v0, const F& w0, const P& ph,
-                                                int i, int j, int k, Real h1, Real h2, Real& fn,
-                                                Real& f1, Real& f2) {
-  // node (s + ds, t + dt) of the plane, and the cell of quadrant (a, b) on side c of it (c = 0:
-  // low along D), as mesh indices
-  const auto at = [&](const F& x, int ds, int dt) -> Real {
-    if constexpr (D == 0) return x(i, j + ds, k + dt);
-    if constexpr (D == 1) return x(i + dt, j, k + ds);
-    if constexpr (D == 2) return x(i + ds, j + dt, k);
-  };
-  const auto jump = [&](int a, int b) -> Real {
-    const int cs = (a - 1) / 2, ct = (b - 1) / 2;
-    if constexpr (D == 0) return ph(i - 1, j + cs, k + ct) - ph(i, j + cs, k + ct);
-    if constexpr (D == 1) return ph(i + ct, j - 1, k + cs) - ph(i + ct, j, k + cs);
-    if constexpr (D == 2) return ph(i + cs, j + ct, k - 1) - ph(i + cs, j + ct, k);
-  };
-  const F& N = D == 0 ? u0 : D == 1 ? v0 : w0;
-  const F& T1 = D == 0 ? v0 : D == 1 ? w0 : u0;
-  const F& T2 = D == 0 ? w0 : D == 1 ? u0 : v0;
-  const Real dpp = jump(1, 1), dpm = jump(1, -1), dmp = jump(-1, 1), dmm = jump(-1, -1);
-  const Real third = Real(1) / 3, sixth = Real(1) / 6;
-  const auto sum_s = [&](const F& x) {
-    return third * ((dpp + dpm) * at(x, 1, 0) - (dmp + dmm) * at(x, -1, 0)) +
-           sixth *
-               (dpp * at(x, 1, 1) + dpm * at(x, 1, -1) - dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
-  };
-  const auto sum_t = [&](const F& x) {
-    return third * ((dpp + dmp) * at(x, 0, 1) - (dpm + dmm) * at(x, 0, -1)) +
-           sixth *
-               (dpp * at(x, 1, 1) - dpm * at(x, 1, -1) + dmp * at(x, -1, 1) - dmm * at(x, -1, -1));
-  };
-  const Real half = Real(0.5);
-  fn += half * (h2 * sum_s(T1) + h1 * sum_t(T2));
-  f1 -= half * h2 * sum_s(N);
-  f2 -= half * h1 * sum_t(N);
-}
-template <class F, class P>
-KOKKOS_FORCEINLINE_FUNCTION void mid_step_force(const F& u0, const F& v0, const F& w0, const P& ph,
-                                                int i, int j, int k, Real hx, Real hy, Real hz,
-                                                Real f[3]) {
-  // x faces: sides y, z; y faces: z, x; z faces: x, y
-  mid_step_plane<0>(u0, v0, w0, ph, i, j, k, hy, hz, f[0], f[1], f[2]);
-  mid_step_plane<1>(u0, v0, w0, ph, i, j, k, hz, hx, f[1], f[2], f[0]);
-  mid_step_plane<2>(u0, v0, w0, ph, i, j, k, hx, hy, f[2], f[0], f[1]);
 }
 
 // A node's acceleration and its start- and end-of-step velocities (the point function of
@@ -780,6 +738,9 @@ Health Hydro::lagrange(Real dt, long cycle) {
   // (Each cell's six face fluxes are found in the predictor's launch, from the node
   // velocities: no stored face fluxes.)
   const bool mixed = burn_ && !mm_ && burn_->mixed();
+  const bool has_strength = strength_ != nullptr;
+  const std::array<Field3, 3> start_fields{u0_, v0_, w0_};
+  const std::array<Field3, 3>* start = mid_geometry_ && !has_strength ? &start_fields : nullptr;
   if (mm_) {
     mm_predictor(vol, hf);
   } else if (mixed) {
@@ -791,17 +752,17 @@ Health Hydro::lagrange(Real dt, long cycle) {
         mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
           return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
-        });
+        },
+        start);
   } else {
     // (the EOS kind dispatched here, so the predictor's loop has no switch: PressureCut)
     eos::with_kind(eos.kind, [&](auto kind) {
       predictor_kernel(mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
-                       PressureCut<decltype(kind)::value>{eos});
+                       PressureCut<decltype(kind)::value>{eos}, start);
     });
   }
   if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
   // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
-  const bool has_strength = strength_ != nullptr;
   std::array<Field3, 3> fs;
   if (has_strength) {
     strength_->predictor(s_.u, s_.v, s_.w, rho, e, ph, dt);
@@ -824,23 +785,8 @@ Health Hydro::lagrange(Real dt, long cycle) {
   } else {
     int lo[3], hi[3];
     mesh_.box(Centering::Node, Region::Owned, lo, hi);
+    // (the start-of-step velocities of the mid-step geometry: copied by the predictor)
     const auto u0 = u0_, v0 = v0_, w0 = w0_;
-    if (mid_geometry_) {
-      // the start-of-step velocities, ghosts included (one launch for the three copies)
-      int alo[3], ahi[3];
-      mesh_.box(Centering::Node, Region::All, alo, ahi);
-      for_columns(
-          "lagrange::start_velocities", alo, ahi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-            const auto U = local(u), V = local(v), W = local(w), U0 = local(u0), V0 = local(v0),
-                       W0 = local(w0);
-#pragma GCC ivdep
-            for (int k = k0; k < k1; ++k) {
-              U0(i, j, k) = U(i, j, k);
-              V0(i, j, k) = V(i, j, k);
-              W0(i, j, k) = W(i, j, k);
-            }
-          });
-    }
     const bool mid = mid_geometry_;
     const Real hx = g.dx[0], hy = g.dx[1], hz = g.dx[2], hdt = half;
     for_columns(
