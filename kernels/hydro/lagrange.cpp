@@ -801,7 +801,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
                      czz = cols(q2), cxy = cols(q3), cxz = cols(q4), cyz = cols(q5);
           const auto U = local(u), V = local(v), W = local(w), Ub = local(ub), Vb = local(vb),
                      Wb = local(wb);
-          const auto U0 = local(u0), V0 = local(v0), W0 = local(w0), P0 = local(ph);
+          const auto U0 = local(u0), V0 = local(v0), W0 = local(w0);
           // Stress: the cells' viscous stress; none in the four cell columns around: p alone
           // (the same values, Q = 0, without its six loads per cell)
           const auto run = [&](auto stress, auto on_mid) {
@@ -810,6 +810,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
 #pragma GCC ivdep
             for (int k = k0; k < k1; ++k) {
               NodeUpdate::Corners c8;
+              Real p8[8];  // the 8 cells' half-step pressures (the mid-step geometry's jumps)
           // (unrolled: vectorized on their own, these loops kept GCC from vectorizing the
           // loop over k where the stress is loaded)
 #pragma GCC unroll 2
@@ -818,6 +819,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
                 for (int ab = 0; ab < 4; ++ab) {
                   const int n = ab + 4 * c, ck = k - 1 + c;
                   const Real pp = pc[ab][ck];
+                  p8[n] = pp;
                   c8.px[n] = Stress ? pp + cxx[ab][ck] : pp;
                   c8.py[n] = Stress ? pp + cyy[ab][ck] : pp;
                   c8.pz[n] = Stress ? pp + czz[ab][ck] : pp;
@@ -828,7 +830,12 @@ Health Hydro::lagrange(Real dt, long cycle) {
                 }
               if constexpr (Mid) {
                 Real f[3] = {0, 0, 0};
-                mid_step_force(U0, V0, W0, P0, i, j, k, hx, hy, hz, f);
+                // (the pressures as loaded above: cell (i - 1 + a, j - 1 + b, k - 1 + c) at
+                // corner a + 2 b + 4 c)
+                const auto P8 = [&](int ci, int cj, int cc) {
+                  return p8[(ci - i + 1) + 2 * (cj - j + 1) + 4 * (cc - k + 1)];
+                };
+                mid_step_force(U0, V0, W0, P8, i, j, k, hx, hy, hz, f);
                 node_update.template apply<true>(c8, U, V, W, Ub, Vb, Wb, hdt * f[0], hdt * f[1],
                                                  hdt * f[2], i, j, k);
               } else {
