@@ -149,8 +149,8 @@ template <int D, class F, class P>
 KOKKOS_FORCEINLINE_FUNCTION void mid_step_plane(const F& u0, const F& v0, const F& w0, const P& ph,
                                                 int i, int j, int k, Real h1, Real h2, Real& fn,
                                                 Real& f1, Real& f2) {
-  // node (s + ds, t + dt) of the plane, and the cell of quadrant (a, b) on side c of it (c = 0:
-  // low along D), as mesh indices
+  // node (s + ds, t + dt) of the plane, and the jump across the face of quadrant (a, b) (its
+  // low-D cell less its high-D cell), as mesh indices
   const auto at = [&](const F& x, int ds, int dt) -> Real {
     if constexpr (D == 0) return x(i, j + ds, k + dt);
     if constexpr (D == 1) return x(i + dt, j, k + ds);
@@ -243,8 +243,9 @@ KOKKOS_FORCEINLINE_FUNCTION Real mid_face(const Real* n0, const Real* t10, const
 // that mid_step_force corrects (their corner vectors taken on the faces moved by dt/2 u0:
 // sum_n grad_n S(dt/2 u0) . dt u = dt^2 B(u0, u)), so p times it is the forces' work and total
 // energy is kept to round-off; it differs from the face's swept volume S(dt u) by O(dt^3). The
-// cell's 8 nodes are loaded once and each face built from them in its own node order, so that
-// the two cells of a face compute it alike (bit for bit).
+// cell's 8 nodes are loaded once and each face built from them in its own node order
+// (lagrange::mid_faces takes the three low faces, and the high ones at the block's high side;
+// the unused ones are optimised away).
 template <class F3>
 KOKKOS_FORCEINLINE_FUNCTION CellFaceFluxes cell_mid_corrections(const F3& u0, const F3& v0,
                                                                 const F3& w0, const F3& u,

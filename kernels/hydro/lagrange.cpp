@@ -201,7 +201,8 @@ struct MidFaceColumns {
 };
 
 // The single-material corrector over cells (i, j, kb .. ke - 1) of a column: each cell's six
-// face fluxes (its three low faces stored for the remap), the first remap step's volumes, the
+// face fluxes (its three low faces stored for the remap; with the mid-step geometry read from
+// MidFaceColumns's store instead), the first remap step's volumes, the
 // full step's energy and density (Update; without it, a multi-material step's faces and
 // volumes, its corrector being per material); Check: returns how many Lagrangian volumes are
 // not positive (else 0). A loop with no branch (the high faces of the block's last cells are
@@ -740,7 +741,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
   const bool mixed = burn_ && !mm_ && burn_->mixed();
   const bool has_strength = strength_ != nullptr;
   const std::array<Field3, 3> start_fields{u0_, v0_, w0_};
-  const std::array<Field3, 3>* start = mid_geometry_ && !has_strength ? &start_fields : nullptr;
+  const std::array<Field3, 3>* start = mid_geometry_ ? &start_fields : nullptr;
   if (mm_) {
     mm_predictor(vol, hf);
   } else if (mixed) {
@@ -881,7 +882,7 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const int ex = mesh_.extent(Centering::Cell, 0), ey = mesh_.extent(Centering::Cell, 1),
               ez = mesh_.extent(Centering::Cell, 2);
     const Real cx = cf[0], cy = cf[1], cz = cf[2];
-    const int mid = mid_geometry_ && Update && !has_strength ? 1 : 0;
+    const int mid = mid_geometry_ && Update ? 1 : 0;  // (mid_geometry_: no strength)
     const RemapStep first = remap_steps(cycle).front();
     const StepWeights sw = first.weights();
     auto pre = s_.pre_vol, post = s_.post_vol;

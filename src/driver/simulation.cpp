@@ -392,12 +392,9 @@ std::vector<std::string> Simulation::modules() const {
                          }() +
                          " in converging shocks"
                    : std::string()) +
-              // the Lagrangian step's geometry (kernels/hydro/lagrange.cpp): single material,
-              // no strength
-              (scene_.numerics.geometry == "midstep" && scene_.materials.size() < 2 &&
-                       scene_.materials[0].strength.model.empty()
-                   ? ", mid-step geometry"
-                   : ", fixed geometry"));
+              // the Lagrangian step's geometry, as the hydro decided it (single material, no
+              // strength)
+              (hydro_->mid_geometry() ? ", mid-step geometry" : ", fixed geometry"));
   if (scene_.numerics.void_density > 0) {
     std::ostringstream os;
     os << "void: a material below " << scene_.numerics.void_density
