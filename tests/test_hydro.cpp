@@ -203,6 +203,30 @@ double smooth_wave_error(int nx, const std::vector<std::string>& extra = {}) {
   return e1;
 }
 
+// Noh's inflow in a closed box (reflective outer faces too): the gas leaving the outer walls and
+// the far corner is cold (e = 1.5e-6 against u^2 / 2 = 0.5) and drains towards vacuum, and the
+// kinetic energy the momentum remap makes at its draining nodes is more than its cells can pay
+// without falling below ke_fix_floor (they are cooled to e ~ 1e-30 first). The floor is the
+// one place the KE fix leaves total energy unconserved (point.hpp): the run's energy change
+// must be exactly what the fix reports it could not charge, to round-off. A known defect
+// (docs/numerics.md, "One cycle", item 6: +1.2e-3 at 32^3, 1 and 4 ranks); a remedy that pays
+// it makes the unpaid 0 and this test then asserts |de| <= round-off.
+TEST(Conservation, ClosedNohBoxLosesOnlyWhatTheKeFixCouldNotCharge) {
+  auto scene = test::load_scene("noh.yaml", {"mesh.cells=[24,24,24]", "boundaries.x=reflective",
+                                             "boundaries.y=reflective", "boundaries.z=reflective"});
+  auto r = test::run_scene(scene);
+  ASSERT_TRUE(r.result.ok);
+  const double e0 = r.result.start.total();
+  const double de = (r.result.end.total() - e0) / e0;
+  const double unpaid = (r.result.end.ke_fix_unpaid - r.result.start.ke_fix_unpaid) / e0;
+  std::printf(
+      "closed Noh box 24^3: total energy change %.6e, KE fix unpaid %.6e, difference "
+      "%.3e (round-off bound %.3e over %ld cycles)\n",
+      de, unpaid, de - unpaid, test::energy_roundoff(r.result.cycles), r.result.cycles);
+  EXPECT_GT(unpaid, 1e-4);  // the floor binds here (observed 1.5e-3)
+  EXPECT_LT(std::abs(de - unpaid), test::energy_roundoff(r.result.cycles));
+}
+
 TEST(SmoothWave, SecondOrder) {
   const int sizes[3] = {32, 64, 128};
   double err[3];
@@ -268,6 +292,8 @@ TEST(Conservation, ClosedBoxMassToRoundOff) {
   std::printf("  total energy change %.3e, round-off bound %.3e\n", de,
               test::energy_roundoff(r.result.cycles));
   EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
+  // and the KE fix's floor never bound (Totals::ke_fix_unpaid)
+  EXPECT_EQ(r.result.end.ke_fix_unpaid, 0.0);
   // the wall cells hold the initial state: so do cells far from the waves (x = 0.125, 0.94)
   EXPECT_EQ(p_left, p[nx / 8]);
   EXPECT_EQ(p_right, p[nx - 1 - nx / 16]);

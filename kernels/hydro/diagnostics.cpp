@@ -398,7 +398,10 @@ Totals Hydro::totals() const {
         acc.v[3] += 0.5 * m * (uu * uu + vv * vv + ww * ww);
       },
       Kokkos::Sum<SumN<4>>(nodes));
-  double local[7] = {cells.v[0], cells.v[1], nodes.v[0], nodes.v[1], nodes.v[2], nodes.v[3], 0};
+  double unpaid = 0;
+  Kokkos::deep_copy(unpaid, s_.ke_unpaid);
+  double local[7] = {cells.v[0], cells.v[1], nodes.v[0], nodes.v[1],
+                     nodes.v[2], nodes.v[3], unpaid};
   double global[7];
   MPI_Allreduce(local, global, 7, MPI_DOUBLE, MPI_SUM, mesh_.comm());
   Totals t;
@@ -406,6 +409,7 @@ Totals Hydro::totals() const {
   t.internal = global[1];
   t.momentum = {global[2], global[3], global[4]};
   t.kinetic = global[5];
+  t.ke_fix_unpaid = global[6];
   if (mm_) t.material_mass = mm_->material_masses();
   return t;
 }

@@ -442,6 +442,9 @@ struct State {
   // viscosity raises where any cell of the rank converges
   Field3 cjump;
   Kokkos::View<int, MemSpace> converging;
+  // the energy the KE fix's floor left uncharged on this rank's owned cells since the start
+  // (single-material scenes; remap.cpp, ke_fix_cell; reported by totals())
+  Kokkos::View<double, MemSpace> ke_unpaid;
   Field3 qw;  // a multi-material step's viscous work per cell (the corrector's, for its materials)
   Field3 p_half;             // pressure at the half step (predictor)
   Field3 pre_vol, post_vol;  // cell volumes before / after one remap sweep
@@ -470,6 +473,10 @@ struct TimeStep {
 struct Totals {
   double mass = 0, internal = 0, kinetic = 0;
   std::array<double, 3> momentum{};
+  // the energy the KE fix could not charge since the run began: where the remap made kinetic
+  // energy its cells could not pay without falling below ke_fix_floor (point.hpp), the total
+  // energy gains this much (single-material scenes; 0 in every shipped deck)
+  double ke_fix_unpaid = 0;
   std::vector<double> material_mass;  // per material (multi-material scenes)
   double total() const { return internal + kinetic; }
 };

@@ -310,27 +310,40 @@ KOKKOS_INLINE_FUNCTION void update_cell(Real& rho, Real& e, Real& pre, Real post
 
 // The KE fix of cell k of a column (single-material scenes; item 6 of "One cycle"): the cell's
 // density, energy and volume after the sweep as columns, and its 8 nodes' losses as the node
-// columns (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1.
+// columns (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1. Returns the energy
+// the cell could not pay (its share below ke_fix_floor: m (floor - de), else 0), which
+// Hydro::ke_fix_remainder charges to the whole mesh.
 template <class C, class K>
-KOKKOS_INLINE_FUNCTION void ke_fix_cell(const C& r, const C& en, const C& p1, const K& c00,
+KOKKOS_INLINE_FUNCTION Real ke_fix_cell(const C& r, const C& en, const C& p1, const K& c00,
                                         const K& c10, const K& c01, const K& c11, int k) {
   const Real m = r[k] * p1[k];
   const Real x[8] = {c00[k],     c10[k],     c01[k],     c11[k],
                      c00[k + 1], c10[k + 1], c01[k + 1], c11[k + 1]};
   const Real de = ke_fix_share_of([&](int a, int b, int c) { return x[a + 2 * b + 4 * c]; }, m,
                                   m * mmax(en[k], Real(0)));
-  en[k] += mmax(de, ke_fix_floor(en[k]));
+  const Real floor = ke_fix_floor(en[k]);
+  en[k] += mmax(de, floor);
+  return de < floor ? m * (floor - de) : Real(0);
 }
 
-// The KE fix over a box as k-columns (core/columns.hpp).
+// A column's unpaid KE-fix energy into the rank's sum (one atomic per column, and only where
+// the floor bound: nearly never).
+KOKKOS_INLINE_FUNCTION void add_unpaid(const Kokkos::View<double, MemSpace>& unpaid, Real u) {
+  if (u > 0) Kokkos::atomic_add(&unpaid(), double(u));
+}
+
+// The KE fix over a box of owned cells as k-columns (core/columns.hpp).
 struct KeFixColumns {
   Field3 rho, e, post, kel;
+  Kokkos::View<double, MemSpace> unpaid;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     const auto r = column(rho, i, j), en = column(e, i, j), p1 = column(post, i, j);
     const auto c00 = column(kel, i, j), c10 = column(kel, i + 1, j), c01 = column(kel, i, j + 1),
                c11 = column(kel, i + 1, j + 1);
-#pragma GCC ivdep
-    for (int k = k0; k < k1; ++k) ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+    Real u = 0;
+#pragma omp simd reduction(+ : u)
+    for (int k = k0; k < k1; ++k) u += ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+    add_unpaid(unpaid, u);
   }
 };
 
@@ -597,7 +610,8 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     // Owned cells read owned nodes only.
     // a column's cells (k-columns, core/columns.hpp): each cell's 8 nodes are the columns
     // (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1
-    const KeFixColumns fix{rho, e, post, kel};
+    const auto unpaid = s_.ke_unpaid;
+    const KeFixColumns fix{rho, e, post, kel, unpaid};
     if (next) {
       // Every cell, ghosts included, then gets the next step's volumes (from the volume fluxes
       // alone) in the same launch. The ghost cells take a fix too (finite: a ghost node's loss
@@ -605,8 +619,10 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       // branch to the owned cells the launch took 2.7 ms per cycle at 64^3 (2 threads), with
       // one 3.4 (a masked store, 2.9); as k-columns, 1.2.
       const StepWeights nw = next->weights();
-      int lo[3], hi[3];
+      int lo[3], hi[3], olo[3], ohi[3];
       mesh_.box(Centering::Cell, Region::All, lo, hi);
+      mesh_.box(Centering::Cell, Region::Owned, olo, ohi);
+      const int oi0 = olo[0], oi1 = ohi[0], oj0 = olo[1], oj1 = ohi[1], ok0 = olo[2], ok1 = ohi[2];
       for_columns(
           "remap::ke_fix", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
             const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
@@ -615,11 +631,15 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
                        c01 = column(kel, i, j + 1), c11 = column(kel, i + 1, j + 1);
             const auto xl = column(fx, i, j), xh = column(fx, i + 1, j), yl = column(fy, i, j),
                        yh = column(fy, i, j + 1), zc = column(fz, i, j);
-#pragma GCC ivdep
+            // the unpaid energy of the owned cells only (a ghost's is its owner's)
+            Real owed = 0;
+#pragma omp simd reduction(+ : owed)
             for (int k = k0; k < k1; ++k) {
-              ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+              const Real left = ke_fix_cell(r, en, p1, c00, c10, c01, c11, k);
+              owed += k >= ok0 && k < ok1 ? left : Real(0);
               step_volumes(vol, xh[k] - xl[k], yh[k] - yl[k], zc[k + 1] - zc[k], nw, p0[k], p1[k]);
             }
+            if (i >= oi0 && i < oi1 && j >= oj0 && j < oj1) add_unpaid(unpaid, owed);
           });
       volumes_ready_ = true;
       volumes_for_ = *next;

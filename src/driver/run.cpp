@@ -294,6 +294,12 @@ int run(const CommandLine& cl) {
        << " cell-cycles/s); mass change " << (r.end.mass - r.start.mass) / r.start.mass
        << " (relative), total energy change " << (r.end.total() - r.start.total()) / r.start.total()
        << " (relative)";
+    // the KE fix's floor (docs/numerics.md, "One cycle", item 6): said only where it bound
+    const double unpaid = r.end.ke_fix_unpaid - r.start.ke_fix_unpaid;
+    if (unpaid > 0)
+      os << ", of which " << unpaid / r.start.total()
+         << " the KE fix could not charge (its cells too cold to pay the kinetic energy the remap "
+            "made)";
     log_line(os.str());
     if (!r.checkpoints.empty() && r.ending != Ending::EndTime)
       log_line("checkpoint " + r.checkpoints.back() + "; continue with --restart latest");

@@ -1169,6 +1169,10 @@ std::string Simulation::summary_json(const RunResult& r) const {
       num(r.start.mass != 0 ? dm / r.start.mass : 0, "mass_change_relative");
   js["total_energy_change_relative"] =
       num(r.start.total() != 0 ? de / r.start.total() : 0, "total_energy_change_relative");
+  // the part of that change the KE fix's floor left unpaid (Totals::ke_fix_unpaid)
+  const double du = r.end.ke_fix_unpaid - r.start.ke_fix_unpaid;
+  js["ke_fix_unpaid_relative"] =
+      num(r.start.total() != 0 ? du / r.start.total() : 0, "ke_fix_unpaid_relative");
   js["files"] = r.files;
   js["checkpoints"] = r.checkpoints;
   if (!r.restarted_from.empty()) {
