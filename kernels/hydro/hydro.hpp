@@ -337,6 +337,12 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k,
   return ke_fix_share_of([&](int a, int b, int c) { return kel(i + a, j + b, k + c); }, m, w);
 }
 
+// Energy the KE fix's floor left unpaid (a column's or a cell's) into the rank's sum, State::
+// ke_unpaid (one atomic per column or cell, and only where the floor bound: nearly never).
+KOKKOS_INLINE_FUNCTION void add_unpaid(const Kokkos::View<double, MemSpace>& unpaid, Real u) {
+  if (u > 0) Kokkos::atomic_add(&unpaid(), double(u));
+}
+
 // Sum of a node field over the 8 corners of cell (i, j, k), x fastest.
 template <class F3>
 KOKKOS_INLINE_FUNCTION Real corner_sum(const F3& f, int i, int j, int k) {

@@ -868,6 +868,7 @@ struct MixedCorrector {
 struct MixedKeFix {
   Field3 kel, rho, e, post;
   bool by_mass;
+  Kokkos::View<double, MemSpace> unpaid;  // State::ke_unpaid
 
   template <class Cell>
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
@@ -877,11 +878,14 @@ struct MixedKeFix {
     // the cell average consistent; where it is taken away (< 0), no material gives more
     // than ke_fix_floor allows
     const Real sum = corner_sum(kel, i, j, k);
-    Real de = by_mass ? sum : Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+    const Real share = by_mass ? sum : Real(0.125) * sum / (rho(i, j, k) * post(i, j, k));
+    Real de = share;
     for (int s = 0; s < cell.count(); ++s) {
       const MatRef m = cell.get(s);
       if (m.alpha > 0) de = mmax(de, ke_fix_floor(*m.e));
     }
+    // what the floor left unpaid (every material takes de, the cell's mass rho post in all)
+    add_unpaid(unpaid, rho(i, j, k) * post(i, j, k) * (de - share));
     for (int s = 0; s < cell.count(); ++s) {
       const MatRef m = cell.get(s);
       if (m.alpha > 0) *m.e += de;
@@ -1079,21 +1083,26 @@ struct PureKeFix {
   static constexpr bool by_mass = ByMass;
   IntField3 mat;
   Field3 kel, rho, e, post;
+  Kokkos::View<double, MemSpace> unpaid;  // State::ke_unpaid
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
     const auto mt = local(mat);
     const auto kl = local(kel), r = local(rho), en = local(e), p1 = local(post);
-#pragma GCC ivdep
+    Real owed = 0;
+#pragma omp simd reduction(+ : owed)
     for (int k = k0; k < k1; ++k) {
       const Real sum = corner_sum(kl, i, j, k);
-      Real de;
+      Real share;
       if constexpr (ByMass)
-        de = sum;
+        share = sum;
       else
-        de = Real(0.125) * sum / (r(i, j, k) * p1(i, j, k));
+        share = Real(0.125) * sum / (r(i, j, k) * p1(i, j, k));
       const Real e0 = en(i, j, k);
-      de = mmax(de, ke_fix_floor(e0));
-      en(i, j, k) = select_bits(mt(i, j, k) >= 0, e0 + de, e0);
+      const Real de = mmax(share, ke_fix_floor(e0));
+      const bool pure = mt(i, j, k) >= 0;
+      en(i, j, k) = select_bits(pure, e0 + de, e0);
+      owed += pure ? r(i, j, k) * p1(i, j, k) * (de - share) : Real(0);
     }
+    add_unpaid(unpaid, owed);
   }
 };
 
@@ -1352,7 +1361,8 @@ void Hydro::mm_ke_fix(const RemapStep* next) {
   const bool by_mass = opt_.ke_fix_by_mass;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
-  const MixedKeFix op{kel, rho, e, post, by_mass};
+  const auto unpaid = s_.ke_unpaid;
+  const MixedKeFix op{kel, rho, e, post, by_mass, unpaid};
   if (mm_->kind() == mat::LayoutKind::Dense) {
     mm_->for_cells("remap::ke_fix", lo, hi, op);
     return;
@@ -1381,9 +1391,9 @@ void Hydro::mm_ke_fix(const RemapStep* next) {
     volumes_for_ = *next;
   };
   if (by_mass)
-    launch(PureKeFix<true>{mt, kel, rho, e, post});
+    launch(PureKeFix<true>{mt, kel, rho, e, post, unpaid});
   else
-    launch(PureKeFix<false>{mt, kel, rho, e, post});
+    launch(PureKeFix<false>{mt, kel, rho, e, post, unpaid});
 }
 
 // Explicit instantiations for the layouts' device handles.

@@ -326,12 +326,6 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_cell(const C& r, const C& en, const C& p1, co
   return de < floor ? m * (floor - de) : Real(0);
 }
 
-// A column's unpaid KE-fix energy into the rank's sum (one atomic per column, and only where
-// the floor bound: nearly never).
-KOKKOS_INLINE_FUNCTION void add_unpaid(const Kokkos::View<double, MemSpace>& unpaid, Real u) {
-  if (u > 0) Kokkos::atomic_add(&unpaid(), double(u));
-}
-
 // The KE fix over a box of owned cells as k-columns (core/columns.hpp).
 struct KeFixColumns {
   Field3 rho, e, post, kel;
