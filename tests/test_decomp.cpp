@@ -152,6 +152,15 @@ TEST(Decomposition, SedovIdenticalOn1_2_4Ranks) {
       "sedov.yaml", {"mesh.cells=[17,14,13]", "regions.1.radius=0.15", "time.end=0.05"}));
 }
 
+// Noh's inflow in a closed box: the cold gas draining from the outer walls makes the split sweep
+// redo dual faces with donor values (hydro.hpp, ke_redo; 91 sweeps here), which needs the flags
+// of the ghost nodes from their owners.
+TEST(Decomposition, ClosedNohBoxWithRedoneFacesIdenticalOn1_2_4Ranks) {
+  compare_rank_counts(test::load_scene(
+      "noh.yaml", {"mesh.cells=[15,14,13]", "boundaries.x=reflective", "boundaries.y=reflective",
+                   "boundaries.z=reflective", "time.end=0.3"}));
+}
+
 TEST(Decomposition, PeriodicWaveIdenticalOn1_2_4Ranks) {
   compare_rank_counts(test::load_scene(
       "smooth_wave.yaml", {"mesh.cells=[24,6,6]", "mesh.hi=[1,0.25,0.25]", "time.end=0.2"}));

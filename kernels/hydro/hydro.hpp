@@ -337,6 +337,16 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k,
   return ke_fix_share_of([&](int a, int b, int c) { return kel(i + a, j + b, k + c); }, m, w);
 }
 
+// A node whose kinetic-energy discrepancy, as MomentumFinish stores it (kel: the loss L >= 0, or
+// L per unit internal energy of its 8 cells where the remap made kinetic energy), says it made
+// more than 1/16 of its cells' internal energy: its dual faces are redone with donor values
+// (remap.cpp, Hydro::remap_step). At 1/16 a node, no cell of 8 such nodes pays more than half
+// its own energy in a sweep, so ke_fix_floor does not bind.
+inline constexpr Real kKeRedo = Real(1) / 16;
+KOKKOS_INLINE_FUNCTION bool ke_redo(Real kel) {
+  return kel < -kKeRedo;
+}
+
 // Energy the KE fix's floor left unpaid (a column's or a cell's) into the rank's sum, State::
 // ke_unpaid (one atomic per column or cell, and only where the floor bound: nearly never).
 KOKKOS_INLINE_FUNCTION void add_unpaid(const Kokkos::View<double, MemSpace>& unpaid, Real u) {
@@ -451,6 +461,8 @@ struct State {
   // the energy the KE fix's floor left uncharged on this rank's owned cells since the start
   // (single-material scenes; remap.cpp, ke_fix_cell; reported by totals())
   Kokkos::View<double, MemSpace> ke_unpaid;
+  // raised by remap::momentum where a node made kinetic energy its cells cannot pay (ke_redo)
+  Kokkos::View<int, MemSpace> ke_redo;
   Field3 qw;  // a multi-material step's viscous work per cell (the corrector's, for its materials)
   Field3 p_half;             // pressure at the half step (predictor)
   Field3 pre_vol, post_vol;  // cell volumes before / after one remap sweep
@@ -544,6 +556,9 @@ class Hydro {
   // first remap step's cell volumes (any other remap recomputes them).
   Health lagrange(Real dt, long cycle = 0);
   void remap(long cycle);
+  // sweeps whose dual faces the KE fix redid with donor values so far (ke_redo; the same on
+  // every rank)
+  long ke_redone() const { return ke_redone_; }
   // One remap step over the faces normal to `axes`; `pending` marks the axes whose volume
   // change is not yet remapped (the step's own included).
   void remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending);
@@ -626,6 +641,7 @@ class Hydro {
   // corrector the first step's, a step's KE fix the next one's), if any.
   bool volumes_ready_ = false;
   RemapStep volumes_for_{};
+  long ke_redone_ = 0;  // sweeps whose dual faces were redone (ke_redo)
 };
 
 }  // namespace mp::hydro

@@ -486,6 +486,7 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.p_half = mesh.new_field("pressure_half", C);
   s_.converging = Kokkos::View<int, MemSpace>("converging_cells");
   s_.ke_unpaid = Kokkos::View<double, MemSpace>("ke_fix_unpaid");
+  s_.ke_redo = Kokkos::View<int, MemSpace>("ke_fix_redo");
   if (eos.size() == 1 && opt.heat_flux > 0) s_.cjump = mesh.new_field("conduction_jump", C);
   // (strength has its own forces on the undeformed faces: the fixed geometry there)
   mid_geometry_ = eos.size() == 1 && opt.mid_geometry && opt.strength.kind == strength::kNoStrength;

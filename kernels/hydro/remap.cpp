@@ -5,6 +5,8 @@
 //   split (default): three steps of one axis each, order x,y,z / z,y,x alternating by cycle;
 //   unsplit: one step over all three axes from the same Lagrangian state (symmetric under
 //            permutations of the axes; stable for a Courant-number sum below one).
+#include <mpi.h>
+
 #include "core/axis.hpp"
 #include "core/columns.hpp"
 #include "core/error.hpp"
@@ -212,6 +214,8 @@ void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const F
 // kinetic energy stores it per unit internal energy of its 8 cells (ke_fix_share; the cell
 // update left each cell's internal energy in `pre`). A is the field type (views, or local()
 // accessors made by at() inside a column); apply's options are template arguments.
+// Returns whether the node made more kinetic energy than kKeRedo of its cells' internal energy
+// (Weigh only; the sweep then redoes its faces with donor values, Hydro::remap_step).
 template <class A>
 struct MomentumFinish {
   A un, vn, wn, kel, pre;
@@ -221,7 +225,7 @@ struct MomentumFinish {
     return {local(un), local(vn), local(wn), local(kel), local(pre), by_mass, weigh};
   }
   template <bool ByMass, bool Weigh>
-  KOKKOS_INLINE_FUNCTION void apply(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
+  KOKKOS_INLINE_FUNCTION bool apply(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
                                     const DualUpdate& du) const {
     const Real u1 = du.pu / du.m1, v1 = du.pv / du.m1, w1 = du.pw / du.m1;
     un(i, j, k) = u1;
@@ -233,13 +237,17 @@ struct MomentumFinish {
     if constexpr (ByMass) {
       const Real per_mass = loss / (8 * du.m1);
       kel(i, j, k) = du.m1 > 0 ? per_mass : Real(0);
+      return false;
     } else if constexpr (!Weigh) {
       kel(i, j, k) = loss;
+      return false;
     } else {
       // (the 8 loads whatever the sign: a select, not a branch)
       const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
       const Real per_content = loss / content;
-      kel(i, j, k) = loss >= 0 ? loss : content > 0 ? per_content : Real(0);
+      const Real stored = loss >= 0 ? loss : content > 0 ? per_content : Real(0);
+      kel(i, j, k) = stored;
+      return ke_redo(stored);
     }
   }
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
@@ -253,20 +261,15 @@ struct MomentumFinish {
   }
 };
 
-// Momentum through the dual faces normal to D: every dual face's mass flux and upwind
-// velocities once ("remap::dual_face", lo/hi: both faces of every owned node), then the owned
-// nodes from their two faces ("remap::momentum"; `finish` stores the new velocities and the
-// node's kinetic-energy discrepancy).
+// The owned nodes from their two dual faces normal to D ("remap::momentum"; `finish` stores the
+// new velocities and the node's kinetic-energy discrepancy, and raises `redo` where a node made
+// more kinetic energy than its cells can safely pay, MomentumFinish).
 template <int D>
-void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const int nhi[3],
-                    const Field3& mf, const Field3& nm, const Field3& u, const Field3& v,
-                    const Field3& w, const Field3& F, const Field3& U, const Field3& V,
-                    const Field3& W, const Field3& K, int ord, bool weigh,
-                    const MomentumFinish<Field3>& finish) {
+void momentum_nodes(const int nlo[3], const int nhi[3], const Field3& nm, const Field3& u,
+                    const Field3& v, const Field3& w, const Field3& F, const Field3& U,
+                    const Field3& V, const Field3& W, const Field3& K,
+                    const MomentumFinish<Field3>& finish, const Kokkos::View<int, MemSpace>& redo) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
-  // (one launch with the cell update took 10.5 against 8.3 ms per cycle for the two at
-  // 64^3, 2 threads: the branch per point costs more than the launch)
-  dual_face_sweep<D>(lo, hi, mf, nm, u, v, w, F, U, V, W, K, ord, weigh);
   for_columns(
       "remap::momentum", nlo, nhi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         const auto ua = local(u), va = local(v), wa = local(w), nma = local(nm);
@@ -274,16 +277,18 @@ void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const in
         const auto fin = finish.at(ua);
         // the finish's options as template arguments (loop-invariant selects stay scalar)
         auto run = [&](auto by_mass, auto weighs) {
-#pragma GCC ivdep
+          int any = 0;
+#pragma omp simd reduction(| : any)
           for (int k = k0; k < k1; ++k) {
             const Real u0 = ua(i, j, k), v0 = va(i, j, k), w0 = wa(i, j, k), m0 = nma(i, j, k);
             DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
             const int li = i - sx, lj = j - sy, lk = k - sz;
             du.add(Fa(li, lj, lk), Fa(i, j, k), Ua(li, lj, lk), Ua(i, j, k), Va(li, lj, lk),
                    Va(i, j, k), Wa(li, lj, lk), Wa(i, j, k), Ka(li, lj, lk), Ka(i, j, k));
-            fin.template apply<decltype(by_mass)::value, decltype(weighs)::value>(i, j, k, m0, u0,
-                                                                                  v0, w0, du);
+            any |= int(fin.template apply<decltype(by_mass)::value, decltype(weighs)::value>(
+                i, j, k, m0, u0, v0, w0, du));
           }
+          if (any) Kokkos::atomic_exchange(&redo(), 1);
         };
         if (finish.by_mass)
           run(std::true_type{}, std::false_type{});
@@ -291,6 +296,27 @@ void momentum_sweep(const int lo[3], const int hi[3], const int nlo[3], const in
           run(std::false_type{}, std::true_type{});
         else
           run(std::false_type{}, std::false_type{});
+      });
+}
+
+// The dual faces normal to D (box lo/hi, as dual_face_sweep) of which a node is flagged by
+// ke_redo (its kel after remap::momentum, ghosts exchanged), again with donor values: order 1.
+template <int D>
+void dual_face_redo(const int lo[3], const int hi[3], const Field3& mf, const Field3& nm,
+                    const Field3& u, const Field3& v, const Field3& w, const Field3& kel,
+                    const Field3& F, const Field3& U, const Field3& V, const Field3& W,
+                    const Field3& K) {
+  constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
+  Kokkos::parallel_for(
+      "remap::dual_face_redo", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
+      KOKKOS_LAMBDA(int i, int j, int k) {
+        if (!(ke_redo(kel(i, j, k)) || ke_redo(kel(i + sx, j + sy, k + sz)))) return;
+        const DualFace df = dual_face(mf, nm, u, v, w, i, j, k, D, 1, true);
+        F(i, j, k) = df.f;
+        U(i, j, k) = df.u;
+        V(i, j, k) = df.v;
+        W(i, j, k) = df.w;
+        K(i, j, k) = df.k;
       });
 }
 
@@ -578,10 +604,36 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     }
     int nlo[3], nhi[3];  // the owned nodes
     mesh_.box(Centering::Node, Region::Owned, nlo, nhi);
+    // (one launch with the cell update took 10.5 against 8.3 ms per cycle for the two at
+    // 64^3, 2 threads: the branch per point costs more than the launch)
+    const auto redo = s_.ke_redo;
     with_axis(d, [&](auto a) {
-      momentum_sweep<decltype(a)::value>(lo, hi, nlo, nhi, mf, nm, u, v, w, F, U, V, W, K, ord,
-                                         weigh, finish);
+      constexpr int D = decltype(a)::value;
+      dual_face_sweep<D>(lo, hi, mf, nm, u, v, w, F, U, V, W, K, ord, weigh);
+      momentum_nodes<D>(nlo, nhi, nm, u, v, w, F, U, V, W, K, finish, redo);
     });
+    // Where a node made more kinetic energy than kKeRedo of its cells' internal energy (cold,
+    // fast gas draining towards vacuum: the KE fix's floor would bind), the faces of such nodes
+    // are redone with donor values, which make none, and the nodes updated again (docs/
+    // numerics.md, "One cycle", item 6). Nothing is launched where no node is flagged: every
+    // shipped deck.
+    if (weigh) {
+      int mine = 0, any = 0;
+      Kokkos::deep_copy(mine, redo);
+      MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
+      if (any) {
+        // the ghost nodes' flags are their owners' (a face by a rank boundary is computed on
+        // both sides)
+        halo_.exchange({{kel, Centering::Node, {1, 1, 1}}});
+        with_axis(d, [&](auto a) {
+          constexpr int D = decltype(a)::value;
+          dual_face_redo<D>(lo, hi, mf, nm, u, v, w, kel, F, U, V, W, K);
+          momentum_nodes<D>(nlo, nhi, nm, u, v, w, F, U, V, W, K, finish, redo);
+        });
+        Kokkos::deep_copy(redo, 0);
+        ++ke_redone_;
+      }
+    }
   } else {
     Kokkos::parallel_for(
         "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {

@@ -294,7 +294,11 @@ int run(const CommandLine& cl) {
        << " cell-cycles/s); mass change " << (r.end.mass - r.start.mass) / r.start.mass
        << " (relative), total energy change " << (r.end.total() - r.start.total()) / r.start.total()
        << " (relative)";
-    // the KE fix's floor (docs/numerics.md, "One cycle", item 6): said only where it bound
+    // the KE fix's redone faces and its floor (docs/numerics.md, "One cycle", item 6): said
+    // only where they acted
+    if (r.ke_redone > 0)
+      os << "; the KE fix redid the momentum remap with donor values in " << r.ke_redone
+         << " sweeps (gas too cold to pay the kinetic energy the remap made)";
     const double unpaid = r.end.ke_fix_unpaid - r.start.ke_fix_unpaid;
     if (unpaid > 0)
       os << ", of which " << unpaid / r.start.total()

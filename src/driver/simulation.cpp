@@ -1065,6 +1065,7 @@ RunResult Simulation::run() {
   r.cycles = cycle_;
   r.time = t_;
   r.end = hydro_->totals();
+  r.ke_redone = hydro_->ke_redone();
   r.health = h;
   const double tot[] = {r.end.mass,        r.end.internal,    r.end.kinetic,
                         r.end.momentum[0], r.end.momentum[1], r.end.momentum[2]};
@@ -1099,6 +1100,7 @@ void Simulation::output_failed(RunResult& r, const std::string& what) {
   r.cycles = cycle_;
   r.time = t_;
   r.end = hydro_->totals();
+  r.ke_redone = hydro_->ke_redone();
   r.files = files_;
   r.output_error = what;
   std::string note = "; nothing else was written";
@@ -1171,6 +1173,7 @@ std::string Simulation::summary_json(const RunResult& r) const {
       num(r.start.total() != 0 ? de / r.start.total() : 0, "total_energy_change_relative");
   // the part of that change the KE fix's floor left unpaid (Totals::ke_fix_unpaid)
   const double du = r.end.ke_fix_unpaid - r.start.ke_fix_unpaid;
+  js["ke_fix_redone_sweeps"] = r.ke_redone;
   js["ke_fix_unpaid_relative"] =
       num(r.start.total() != 0 ? du / r.start.total() : 0, "ke_fix_unpaid_relative");
   js["files"] = r.files;

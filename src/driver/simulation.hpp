@@ -41,6 +41,9 @@ struct RunResult {
   double time = 0;
   double wall = 0;
   hydro::Totals start, end;
+  // sweeps in which the KE fix redid dual faces with donor values (hydro::ke_redo): cold gas
+  // draining towards vacuum, where the remap would make kinetic energy its cells cannot pay
+  long ke_redone = 0;
   hydro::Health health;
   std::vector<std::string> files;
   std::vector<std::string> checkpoints;  // written by this run
