@@ -410,6 +410,9 @@ struct Options {
   // to each (equal, the rule before 2026-12-03). Single-material scenes have their own budget
   // (ke_fix_share() above) and ignore it.
   bool ke_fix_by_mass = true;
+  // Single-material scenes: where a node made more kinetic energy than its cells can pay
+  // (ke_redo), redo its dual faces with donor values (numerics.ke_fix_redo; remap.cpp).
+  bool ke_fix_redo = true;
   // One remap step over all axes instead of three split sweeps (symmetric under permutations
   // of the axes; the time step then keeps the sum of the axes' Courant numbers below cfl).
   bool unsplit = false;

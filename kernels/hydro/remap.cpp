@@ -250,14 +250,11 @@ struct MomentumFinish {
       return ke_redo(stored);
     }
   }
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
+  KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k, Real m0, Real u0, Real v0, Real w0,
                                          const DualUpdate& du) const {
-    if (by_mass)
-      apply<true, false>(i, j, k, m0, u0, v0, w0, du);
-    else if (weigh)
-      apply<false, true>(i, j, k, m0, u0, v0, w0, du);
-    else
-      apply<false, false>(i, j, k, m0, u0, v0, w0, du);
+    if (by_mass) return apply<true, false>(i, j, k, m0, u0, v0, w0, du);
+    if (weigh) return apply<false, true>(i, j, k, m0, u0, v0, w0, du);
+    return apply<false, false>(i, j, k, m0, u0, v0, w0, du);
   }
 };
 
@@ -319,6 +316,36 @@ void dual_face_redo(const int lo[3], const int hi[3], const Field3& mf, const Fi
         K(i, j, k) = df.k;
       });
 }
+
+// The unsplit step's node update (remap::momentum): each node computes its own dual faces along
+// the moved axes. `again`: the redo after a node was flagged (ke_redo, as the split sweep's
+// remap::dual_face_redo): the faces of the nodes flagged in `flags` (a copy of the node losses,
+// which this launch rewrites) with donor values.
+struct UnsplitMomentum {
+  Field3 u, v, w, nm, mfx, mfy, mfz, flags;
+  Real ax, ay, az;
+  int ord;
+  bool weigh, again;
+  MomentumFinish<Field3> finish;
+  Kokkos::View<int, MemSpace> redo;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
+    DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
+    const bool me = again && ke_redo(flags(i, j, k));
+    for (int d = 0; d < 3; ++d) {
+      if (!(d == 0 ? ax > 0 : d == 1 ? ay > 0 : az > 0)) continue;
+      const Field3& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
+      const int sx = d == 0, sy = d == 1, sz = d == 2;
+      const int li = i - sx, lj = j - sy, lk = k - sz;
+      const int olo = again && (me || ke_redo(flags(li, lj, lk))) ? 1 : ord;
+      const int ohi = again && (me || ke_redo(flags(i + sx, j + sy, k + sz))) ? 1 : ord;
+      const DualFace lo = dual_face(mf, nm, u, v, w, li, lj, lk, d, olo, weigh);
+      const DualFace hi = dual_face(mf, nm, u, v, w, i, j, k, d, ohi, weigh);
+      du.add(lo.f, hi.f, lo.u, hi.u, lo.v, hi.v, lo.w, hi.w, lo.k, hi.k);
+    }
+    if (finish(i, j, k, m0, u0, v0, w0, du)) Kokkos::atomic_exchange(&redo(), 1);
+  }
+};
 
 // A cell's new density and energy from its mass and energy gains dm, de through the step's
 // faces (pre, post: its volume before and after the step). The volume before the step is read
@@ -617,7 +644,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     // are redone with donor values, which make none, and the nodes updated again (docs/
     // numerics.md, "One cycle", item 6). Nothing is launched where no node is flagged: every
     // shipped deck.
-    if (weigh) {
+    if (weigh && opt_.ke_fix_redo) {
       int mine = 0, any = 0;
       Kokkos::deep_copy(mine, redo);
       MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
@@ -635,20 +662,28 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       }
     }
   } else {
-    Kokkos::parallel_for(
-        "remap::momentum", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-          const Real u0 = u(i, j, k), v0 = v(i, j, k), w0 = w(i, j, k), m0 = nm(i, j, k);
-          DualUpdate du{m0, u0 * m0, v0 * m0, w0 * m0, 0};
-          for (int d = 0; d < 3; ++d) {
-            if (!(d == 0 ? ax > 0 : d == 1 ? ay > 0 : az > 0)) continue;
-            const Field3& mf = d == 0 ? mfx : d == 1 ? mfy : mfz;
-            const int li = i - (d == 0), lj = j - (d == 1), lk = k - (d == 2);
-            const DualFace lo = dual_face(mf, nm, u, v, w, li, lj, lk, d, ord, weigh);
-            const DualFace hi = dual_face(mf, nm, u, v, w, i, j, k, d, ord, weigh);
-            du.add(lo.f, hi.f, lo.u, hi.u, lo.v, hi.v, lo.w, hi.w, lo.k, hi.k);
-          }
-          finish(i, j, k, m0, u0, v0, w0, du);
-        });
+    // The unsplit step computes each node's faces itself; the redo (as in the split sweep
+    // above) runs the launch again with donor values on the faces of the flagged nodes, whose
+    // flags it reads from a copy of the node losses (`flags`: the launch rewrites kel).
+    const auto redo = s_.ke_redo;
+    UnsplitMomentum op{u,  v,  w,  nm,  mfx,   mfy,   mfz,    kel,
+                       ax, ay, az, ord, weigh, false, finish, redo};
+    Kokkos::parallel_for("remap::momentum", mesh_.nodes(Region::Owned), op);
+    if (weigh && opt_.ke_fix_redo) {
+      int mine = 0, any = 0;
+      Kokkos::deep_copy(mine, redo);
+      MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
+      if (any) {
+        const Field3 flags = s_.dual_k;  // (scratch: the split sweep's, unused here)
+        halo_.exchange({{kel, Centering::Node, {1, 1, 1}}});
+        Kokkos::deep_copy(flags, kel);
+        op.flags = flags;
+        op.again = true;
+        Kokkos::parallel_for("remap::momentum_redo", mesh_.nodes(Region::Owned), op);
+        Kokkos::deep_copy(redo, 0);
+        ++ke_redone_;
+      }
+    }
   }
   if (opt_.ke_fix && mm_) {
     mm_ke_fix(next);

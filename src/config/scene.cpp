@@ -518,6 +518,7 @@ std::map<std::string, std::string> resolved_numerics(const Scene& s) {
           {"numerics.geometry", n.geometry},
           {"numerics.ke_fix", n.ke_fix ? "true" : "false"},
           {"numerics.ke_fix_share", n.ke_fix_share},
+          {"numerics.ke_fix_redo", n.ke_fix_redo ? "true" : "false"},
           {"numerics.samples", std::to_string(n.samples)},
           {"numerics.layout", n.layout},
           {"numerics.interface", n.interface},
@@ -561,9 +562,10 @@ Scene read_scene(const Deck& deck) {
 
   if (root.has("numerics")) {
     const DeckNode n = root.child("numerics");
-    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "ke_fix_share", "samples", "layout",
-                   "interface", "min_fraction", "closure", "relaxation_iterations", "solid_floor",
-                   "void_density", "heat_flux", "geometry"});
+    n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "ke_fix_share", "ke_fix_redo",
+                   "samples", "layout", "interface", "min_fraction", "closure",
+                   "relaxation_iterations", "solid_floor", "void_density", "heat_flux",
+                   "geometry"});
     s.numerics.heat_flux = n.get_real("heat_flux", 0, 100, s.numerics.heat_flux);
     s.numerics.geometry = n.get_enum("geometry", {"midstep", "fixed"}, s.numerics.geometry);
     s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
@@ -580,6 +582,7 @@ Scene read_scene(const Deck& deck) {
     s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
     s.numerics.ke_fix_share =
         n.get_enum("ke_fix_share", {"mass", "equal"}, s.numerics.ke_fix_share);
+    s.numerics.ke_fix_redo = n.get_bool("ke_fix_redo", s.numerics.ke_fix_redo);
     s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
     if (n.has("viscosity")) {
       const DeckNode q = n.child("viscosity");

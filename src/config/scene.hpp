@@ -102,6 +102,9 @@ struct NumericsSpec {
   std::string geometry = "midstep";
   bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
   std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
+  // single-material: redo the momentum remap with donor values at the nodes that made more
+  // kinetic energy than their cells can pay (hydro.hpp, ke_redo); false leaves it to the floor
+  bool ke_fix_redo = true;
   int samples = 4;                    // sub-cell samples per axis for the initial volume fractions
   std::string layout = "compact";     // per-material storage: compact | dense
   std::string interface = "youngs";   // material fluxes: youngs (PLIC) | slic | none

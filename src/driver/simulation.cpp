@@ -335,6 +335,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.dt_max = Real(scene_.time.dt_max);
   opt.ke_fix = scene_.numerics.ke_fix;
   opt.ke_fix_by_mass = scene_.numerics.ke_fix_share == "mass";
+  opt.ke_fix_redo = scene_.numerics.ke_fix_redo;
   opt.unsplit = scene_.numerics.remap == "unsplit";
   opt.layout =
       scene_.numerics.layout == "dense" ? mat::LayoutKind::Dense : mat::LayoutKind::Compact;
@@ -373,12 +374,15 @@ Simulation::~Simulation() = default;
 
 std::vector<std::string> Simulation::modules() const {
   std::vector<std::string> m;
-  m.push_back("hydro: staggered Lagrange (predictor-corrector) + split remap, " +
+  m.push_back("hydro: staggered Lagrange (predictor-corrector) + remap, " +
               std::string(scene_.numerics.advection == "first" ? "first-order donor cell"
                                                                : "second-order van Leer") +
               " advection, " + scene_.numerics.remap + " remap, KE fix " +
-              (!scene_.numerics.ke_fix       ? std::string("off")
-               : scene_.materials.size() < 2 ? std::string("on")
+              (!scene_.numerics.ke_fix ? std::string("off")
+               : scene_.materials.size() < 2
+                   ? std::string(scene_.numerics.ke_fix_redo
+                                     ? "on"
+                                     : "on (no donor-value redo, numerics.ke_fix_redo: false)")
                : scene_.numerics.ke_fix_share == "mass"
                    ? std::string("on (a node's loss shared by its cells' mass)")
                    : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")) +
