@@ -364,8 +364,9 @@ KOKKOS_INLINE_FUNCTION void update_cell(Real& rho, Real& e, Real& pre, Real post
 // The KE fix of cell k of a column (single-material scenes; item 6 of "One cycle"): the cell's
 // density, energy and volume after the sweep as columns, and its 8 nodes' losses as the node
 // columns (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1) at k and k + 1. Returns the energy
-// the cell could not pay (its share below ke_fix_floor: m (floor - de), else 0), which
-// Hydro::ke_fix_remainder charges to the whole mesh.
+// the cell could not pay (its share below ke_fix_floor: m (floor - de), else 0), which the
+// launch adds to State::ke_unpaid (Totals::ke_fix_unpaid). With the redo (ke_redo) no cell
+// should reach the floor; without it (numerics.ke_fix_redo: false) a closed Noh box does.
 template <class C, class K>
 KOKKOS_INLINE_FUNCTION Real ke_fix_cell(const C& r, const C& en, const C& p1, const K& c00,
                                         const K& c10, const K& c01, const K& c11, int k) {
