@@ -462,7 +462,7 @@ struct State {
   Field3 cjump;
   Kokkos::View<int, MemSpace> converging;
   // the energy the KE fix's floor left uncharged on this rank's owned cells since the start
-  // (single-material scenes; remap.cpp, ke_fix_cell; reported by totals())
+  // (remap.cpp ke_fix_cell, multimat.cpp MixedKeFix / PureKeFix; reported by totals())
   Kokkos::View<double, MemSpace> ke_unpaid;
   // raised by remap::momentum where a node made kinetic energy its cells cannot pay (ke_redo)
   Kokkos::View<int, MemSpace> ke_redo;
@@ -496,7 +496,7 @@ struct Totals {
   std::array<double, 3> momentum{};
   // the energy the KE fix could not charge since the run began: where the remap made kinetic
   // energy its cells could not pay without falling below ke_fix_floor (point.hpp), the total
-  // energy gains this much (single-material scenes; 0 in every shipped deck)
+  // energy gains this much (0 in every shipped deck)
   double ke_fix_unpaid = 0;
   std::vector<double> material_mass;  // per material (multi-material scenes)
   double total() const { return internal + kinetic; }
@@ -587,6 +587,11 @@ class Hydro {
   // whether the scene conducts (Noh's heat flux on, a single material)
   bool conducts() const { return opt_.heat_flux > 0 && !mm_; }
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
+  // After remap::momentum: whether a node on any rank raised State::ke_redo (with the option
+  // on); if so the node losses are exchanged (their ghosts hold their owners' flags) and the
+  // sweep counted, the caller redoes the flagged nodes' faces, then ke_redo_end lowers the flag.
+  bool ke_redo_begin();
+  void ke_redo_end();
   // `next`: the step after this one (nullptr for the last), whose cell volumes the KE fix's
   // launch writes.
   void remap_step(const RemapStep& step, const RemapStep* next);

@@ -437,6 +437,25 @@ void Hydro::remap(long cycle) {
     remap_step(steps[s], s + 1 < steps.size() ? &steps[s + 1] : nullptr);
 }
 
+bool Hydro::ke_redo_begin() {
+  if (!opt_.ke_fix_redo) return false;
+  int mine = 0, any = 0;
+  Kokkos::deep_copy(mine, s_.ke_redo);
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
+  if (!any) return false;
+  // a face by a rank boundary is computed on both sides: the ghost nodes need their owners'
+  // flags (the node losses)
+  halo_.exchange({{s_.ke_loss, Centering::Node, {1, 1, 1}}});
+  ++ke_redone_;
+  return true;
+}
+
+// (after the redo's own remap::momentum, which may raise the flag again: a node whose faces
+// changed can still be flagged, and its cells then pay by the floor)
+void Hydro::ke_redo_end() {
+  Kokkos::deep_copy(s_.ke_redo, 0);
+}
+
 void Hydro::remap_step(const std::array<bool, 3>& axes, const std::array<bool, 3>& pending) {
   remap_step(RemapStep{axes, pending}, nullptr);
 }
@@ -645,22 +664,13 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     // are redone with donor values, which make none, and the nodes updated again (docs/
     // numerics.md, "One cycle", item 6). Nothing is launched where no node is flagged: every
     // shipped deck.
-    if (weigh && opt_.ke_fix_redo) {
-      int mine = 0, any = 0;
-      Kokkos::deep_copy(mine, redo);
-      MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
-      if (any) {
-        // the ghost nodes' flags are their owners' (a face by a rank boundary is computed on
-        // both sides)
-        halo_.exchange({{kel, Centering::Node, {1, 1, 1}}});
-        with_axis(d, [&](auto a) {
-          constexpr int D = decltype(a)::value;
-          dual_face_redo<D>(lo, hi, mf, nm, u, v, w, kel, F, U, V, W, K);
-          momentum_nodes<D>(nlo, nhi, nm, u, v, w, F, U, V, W, K, finish, redo);
-        });
-        Kokkos::deep_copy(redo, 0);
-        ++ke_redone_;
-      }
+    if (weigh && ke_redo_begin()) {
+      with_axis(d, [&](auto a) {
+        constexpr int D = decltype(a)::value;
+        dual_face_redo<D>(lo, hi, mf, nm, u, v, w, kel, F, U, V, W, K);
+        momentum_nodes<D>(nlo, nhi, nm, u, v, w, F, U, V, W, K, finish, redo);
+      });
+      ke_redo_end();
     }
   } else {
     // The unsplit step computes each node's faces itself; the redo (as in the split sweep
@@ -670,20 +680,13 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     UnsplitMomentum op{u,  v,  w,  nm,  mfx,   mfy,   mfz,    kel,
                        ax, ay, az, ord, weigh, false, finish, redo};
     Kokkos::parallel_for("remap::momentum", mesh_.nodes(Region::Owned), op);
-    if (weigh && opt_.ke_fix_redo) {
-      int mine = 0, any = 0;
-      Kokkos::deep_copy(mine, redo);
-      MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
-      if (any) {
-        const Field3 flags = s_.dual_k;  // (scratch: the split sweep's, unused here)
-        halo_.exchange({{kel, Centering::Node, {1, 1, 1}}});
-        Kokkos::deep_copy(flags, kel);
-        op.flags = flags;
-        op.again = true;
-        Kokkos::parallel_for("remap::momentum_redo", mesh_.nodes(Region::Owned), op);
-        Kokkos::deep_copy(redo, 0);
-        ++ke_redone_;
-      }
+    if (weigh && ke_redo_begin()) {
+      const Field3 flags = s_.dual_k;  // (scratch: the split sweep's, unused here)
+      Kokkos::deep_copy(flags, kel);
+      op.flags = flags;
+      op.again = true;
+      Kokkos::parallel_for("remap::momentum_redo", mesh_.nodes(Region::Owned), op);
+      ke_redo_end();
     }
   }
   if (opt_.ke_fix && mm_) {
