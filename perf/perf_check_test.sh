@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # CTest test perf_check_fires (label perf): the timing check fires on an injected slowdown and
 # passes a plain rerun. It records its own baseline in a temporary directory (two quick runs,
-# their medians averaged), then runs the check twice against it with threshold 1.5 for every
-# benchmark (over 5 quick runs on the loaded 2-core machine the CPU-time medians spread by
-# 4-11 % between runs, the rounds of a run by up to 33 %; docs/perf-check.md):
+# their medians averaged), then runs the check twice against it with threshold 2.0 for every
+# benchmark, the committed baseline's (its floor 1.0; docs/perf-check.md). Not less: the host
+# is a VM shared with other machines, and its speed moves under a run whatever this VM does
+# (over 5 quick runs the CPU-time medians spread by 4-11 %, but the CI run of af8c2c0 ran the
+# plain rerun 1.34 / 1.62 / 1.55 / 1.78x slower than the baseline recorded a minute before in
+# the same test, nothing else running in the VM and the triad unchanged, and failed at 1.5):
 #   plain                                   exit 0, "perf_check: passed"
 #   MINIPAGOSA_PERF_INJECT=single_material  exit 1, the single_material row "SLOWER: REGRESSION"
 #   MINIPAGOSA_PERF_INJECT_REPEATS=50       (50 more lagrange::viscosity calls per 16^3 cycle:
@@ -30,7 +33,7 @@ done
 "${exe}" --make-baseline "${tmp}/baseline.json" "${tmp}/run1.json" "${tmp}/run2.json"
 check "baseline written" test -s "${tmp}/baseline.json"
 
-"${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 1.5 > "${tmp}/plain.txt" 2>&1
+"${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 2.0 > "${tmp}/plain.txt" 2>&1
 rc=$?
 echo "--- plain rerun (exit ${rc}):"
 cat "${tmp}/plain.txt"
@@ -40,7 +43,7 @@ check "plain rerun: no benchmark slower" bash -c "! grep -q 'SLOWER' '${tmp}/pla
 check "plain rerun: launches unchanged" bash -c "! grep -q 'LAUNCHES CHANGED' '${tmp}/plain.txt'"
 
 MINIPAGOSA_PERF_INJECT=single_material MINIPAGOSA_PERF_INJECT_REPEATS=50 \
-  "${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 1.5 > "${tmp}/inject.txt" 2>&1
+  "${exe}" --quick --baseline "${tmp}/baseline.json" --threshold 2.0 > "${tmp}/inject.txt" 2>&1
 rc=$?
 echo "--- injected slowdown (exit ${rc}):"
 cat "${tmp}/inject.txt"
