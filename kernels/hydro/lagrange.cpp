@@ -388,7 +388,7 @@ struct ViscosityColumns {
       const Real dy = limited_jump(jump_y(i, j - 1, k), jy, jump_y(i, j + 1, k));
       const Real dz = limited_jump(jump_z(i, j, k - 1), jz, jump_z(i, j, k + 1));
       const Real du = -msqrt(dx * dx + dy * dy + dz * dz);
-      const Real qv = hydro::viscosity(rho(i, j, k), c(i, j, k), du, cq, cl);
+      const Real qv = hydro::viscosity(rho(i, j, k), c(i, j, k), du, dx + dy + dz, cq, cl);
       q(i, j, k) = expands ? Real(0) : qv;
     }
   }

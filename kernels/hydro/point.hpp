@@ -7,10 +7,14 @@
 namespace mp::hydro {
 
 // Artificial viscosity, quadratic (von Neumann–Richtmyer) plus linear (Landshoff), acting in
-// compression only. `du` is the velocity jump across the cell (negative in compression).
-KOKKOS_INLINE_FUNCTION Real viscosity(Real rho, Real c, Real du, Real c_quad, Real c_lin) {
+// compression only. `du` is the velocity jump across the cell (negative in compression) that
+// the quadratic term sees, `dl` the one the linear term sees (<= 0 where du < 0; the same jump
+// in every 1-D flow). In 3-D the cell's jumps are the Christensen-limited per-axis ones,
+// du their norm and dl their sum (docs/numerics.md, "Tensor viscosity": the linear term, the
+// one that damps the ringing behind a shock, then damps it alike at any angle of the shock).
+KOKKOS_INLINE_FUNCTION Real viscosity(Real rho, Real c, Real du, Real dl, Real c_quad, Real c_lin) {
   if (du >= 0) return 0;
-  return rho * (c_quad * du * du - c_lin * c * du);
+  return rho * (c_quad * du * du - c_lin * c * dl);
 }
 
 // Christensen's monotonic limiter for the viscosity (Christensen, "Godunov methods on a
@@ -161,7 +165,9 @@ KOKKOS_INLINE_FUNCTION bool converging(const Real ev[3]) {
 }
 
 // The compressive velocity jump J that gives the viscosity q in a cell of density r and sound
-// speed c: q = r (cq J^2 + cl c J), solved without cancellation (cq = 0 allowed).
+// speed c: q = r (cq J^2 + cl c J), solved without cancellation (cq = 0 allowed). (Where the
+// two terms saw different jumps, `viscosity` above, J lies between them: the one jump that
+// gives the cell's q.)
 KOKKOS_INLINE_FUNCTION Real jump_of_q(Real q, Real r, Real c, Real cq, Real cl) {
   if (!(q > 0) || !(r > 0)) return 0;
   const Real x = q / r, b = cl * c;
