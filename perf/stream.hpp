@@ -14,4 +14,11 @@ struct Stream {
 
 Stream stream_triad(long elements, int repetitions);
 
+// The same triad on arrays that stay in the caches (3 x 1 MiB: the last-level cache of any
+// machine this runs on), timed over all its repetitions together (their mean, not their best):
+// how fast this process computes out of the caches just now, the state the benchmarks of
+// perf/perf_check.cpp (working sets of a few MB) run in. `elements` is the bandwidth's element
+// count per repetition.
+Stream cache_triad(long elements, int repetitions);
+
 }  // namespace mp::perf
