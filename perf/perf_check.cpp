@@ -115,18 +115,24 @@ const Metric* find_metric(const std::string& name) {
 }
 // The same time the other way: the triad-normalised metric of a raw one and the raw one of a
 // normalised one. A benchmark is slower only when both are over its limit (see check()).
+// The metric of the same clock ("cpu" or "wall") as m with the suffix chosen by m's own
+// normalisation: raw ("_seconds"), by the STREAM triad ("_x_triad") or the in-cache one
+// ("_x_cache").
+const Metric* same_clock(const Metric* m, const char* if_raw, const char* if_triad,
+                         const char* if_cache) {
+  const std::string n = m->name, clock = n.substr(0, n.find('_'));
+  const bool triad = n.find("_x_triad") != std::string::npos;
+  const bool cache = n.find("_x_cache") != std::string::npos;
+  return find_metric(clock + (triad ? if_triad : cache ? if_cache : if_raw));
+}
 const Metric* paired_metric(const Metric* m) {
-  const std::string n = m->name, clock = n.substr(0, n.find('_'));  // "cpu" or "wall"
-  const bool normalised = n.find("_x_") != std::string::npos;
-  return find_metric(clock + (normalised ? "_seconds" : "_x_triad"));
+  return same_clock(m, "_x_triad", "_seconds", "_seconds");
 }
 // And the third: the same time normalised by the in-cache triad (of a cache-normalised
 // verdict metric, by the STREAM triad). Over the limit in it too, or the baseline lacks it
 // (one from before 2026-12-05), for a benchmark to be slower (see check()).
 const Metric* third_metric(const Metric* m) {
-  const std::string n = m->name, clock = n.substr(0, n.find('_'));
-  const bool cache = n.find("_x_cache") != std::string::npos;
-  return find_metric(clock + (cache ? "_x_triad" : "_x_cache"));
+  return same_clock(m, "_x_cache", "_x_cache", "_x_triad");
 }
 // A metric's value in its unit (ms or triad-MB) from its stored value (s or GB).
 double shown(double v) {
@@ -490,6 +496,10 @@ int check(int argc, char** argv) {
     return base["benchmarks"][b.name]["metrics"][m]["median"].get<double>();
   };
   std::vector<Verdict> v(all.size());
+  // over the limit in the verdict metric, its pair and (where the baseline has it) the third
+  auto over = [&](double limit, double r, double rp, double rt) {
+    return r > limit && rp > limit && (!third || rt > limit);
+  };
   std::vector<int> suspects;
   bool fail = false;
   double others_again = -1;
@@ -500,8 +510,7 @@ int check(int argc, char** argv) {
       v[i].ratio = now(all[i], metric->name) / base_of(all[i], metric->name);
       v[i].ratio_paired = now(all[i], paired->name) / base_of(all[i], paired->name);
       if (third) v[i].ratio_third = now(all[i], third->name) / base_of(all[i], third->name);
-      if (v[i].ratio > v[i].limit && v[i].ratio_paired > v[i].limit &&
-          (!third || v[i].ratio_third > v[i].limit))
+      if (over(v[i].limit, v[i].ratio, v[i].ratio_paired, v[i].ratio_third))
         suspects.push_back(int(i));
       v[i].faster = v[i].ratio < 1 / v[i].limit;
       v[i].launch_diff = launch_diff(b["launches"], all[i].launches);
@@ -534,8 +543,7 @@ int check(int argc, char** argv) {
         w.remeasured_paired = now(again[q], paired->name) / base_of(all[suspects[q]], paired->name);
         if (third)
           w.remeasured_third = now(again[q], third->name) / base_of(all[suspects[q]], third->name);
-        w.slower = w.remeasured > w.limit && w.remeasured_paired > w.limit &&
-                   (!third || w.remeasured_third > w.limit);
+        w.slower = over(w.limit, w.remeasured, w.remeasured_paired, w.remeasured_third);
       }
     } else {
       for (int i : suspects) v[i].slower = true;
