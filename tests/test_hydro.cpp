@@ -352,30 +352,89 @@ TEST(Extremes, LeBlancStaysPositive) {
   EXPECT_GE(emin, 1e-7 * (1 - tol));
 }
 
-// The LeBlanc shock position against the exact x = 3 + 6 * 0.8291 = 7.975 at t = 6. Staggered
-// schemes run it ahead at coarse resolution (the internal-energy error of the contact pushes
-// it; issue #16: the target of 5 cells at 800 is not met). Verified here: the error falls at
-// first order, 0.37 at 360 cells (15 cells) and 0.18 at 720 (measured 2026-11; the bound on the
-// ratio, 0.7, allows order 0.5) — a single-resolution bound would only pin this code's number.
-TEST(Extremes, LeBlancShockPositionConvergesAtFirstOrder) {
+// LeBlanc at t = 6 against the exact solution (shock at x = 3 + 6 * 0.8291 = 7.975, shocked
+// light gas e*R = 0.1933), at the issue's 800 cells and at 400. Before the free-expansion rule
+// (numerics.free_expansion, docs/numerics.md "Free expansion to the nodes") the heavy gas's
+// start-up expansion into the light cells left an entropy spike on the light side of the
+// contact that ran the shock +14.3 / +13.4 cells ahead and the contact energy +25.8 / +22.7 %
+// high (a fixed 13 cells at 1600 and 3200 too: first order in position). With it (2026-12-05,
+// double): +5.5 / +5.1 cells, +12.1 / +9.0 % (tools/riemann_check.py gives the same; the shock
+// error is not monotone in N, +0.2 cells at 360, +1.0 at 720, +5.6 at 1600: which faces at the
+// start cross the rule's density ratio depends on the mesh). Asserted: the shock within 6
+// cells at both (the issue's 5 is not met at 800: issue #16), the contact energy within the
+// issue's 10 % at 800 and 13 % at 400, total energy to round-off.
+TEST(Extremes, LeBlancShockAndContactEnergy) {
   const double g = 5.0 / 3.0;
   const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
-  const double exact_shock = 3 + 6 * rs.right_head_speed();
-  double err[2];
-  const int cells[2] = {360, 720};
+  const double t = 6, exact_shock = 3 + t * rs.right_head_speed();
+  const double e_star = rs.p_star() / ((g - 1) * rs.rho_star_right());
+  const int cells[2] = {400, 800};
+  const double contact_bound[2] = {0.13, 0.10};
   for (int n = 0; n < 2; ++n) {
     auto r = test::run_scene(
         test::load_scene("leblanc.yaml", {"mesh.cells=[" + std::to_string(cells[n]) + ",2,2]"}));
     ASSERT_TRUE(r.result.ok) << r.result.health.what;
     const Profile p = profile_x(r);
     const double x_shock = crossing(p, 0.5 * (1e-3 + rs.rho_star_right()), -1);
-    err[n] = x_shock - exact_shock;
-    std::printf("LeBlanc, %d cells: shock at %.4f (exact %.4f), %+.4f = %+.1f cells\n", cells[n],
-                x_shock, exact_shock, err[n], err[n] / (9.0 / cells[n]));
+    const double shock_cells = (x_shock - exact_shock) / p.dx;
+    // the internal-energy peak on the light side of the contact (from 0.5 behind the exact
+    // contact to 0.2 short of the exact shock)
+    const double x_contact = 3 + t * rs.u_star();
+    double e_peak = 0;
+    for (size_t i = 0; i < p.x.size(); ++i)
+      if (p.x[i] > x_contact - 0.5 && p.x[i] < exact_shock - 0.2) e_peak = std::max(e_peak, p.e[i]);
+    const double over = e_peak / e_star - 1;
+    const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
+    std::printf(
+        "LeBlanc, %d cells: shock at %.4f (exact %.4f), %+.1f cells; contact e peak %.4f "
+        "against e*R %.4f (%+.1f %%); total energy change %.2e\n",
+        cells[n], x_shock, exact_shock, shock_cells, e_peak, e_star, 100 * over, de);
+    EXPECT_LE(std::abs(shock_cells), 6.0);
+    EXPECT_LE(over, contact_bound[n]);
+    EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   }
-  std::printf("LeBlanc shock error ratio 720/360: %.3f (first order: 0.5)\n", err[1] / err[0]);
-  EXPECT_LT(std::abs(err[1]), 0.7 * std::abs(err[0]));
-  EXPECT_GT(err[0], 0);  // ahead, as documented: a sign change would mean a different defect
+}
+
+// Sod with a near-vacuum right state (rho 1e-8, p 1e-10; issue #16), t = 0.06: the left gas
+// expands into the vacuum at up to its escape speed 2 c_L / (gamma - 1) = 5.92. Before the
+// free-expansion rule (numerics.free_expansion, docs/numerics.md "Free expansion to the
+// nodes") the remap's heating of gas entering much lighter cells ran the rho = 1e-4 crossing
+// +23.6 / +47.9 cells ahead at 400 / 800 cells (not converging) and the gas beside it 27 / 21 %
+// above the exact star velocity (tools/riemann_check.py); with it +1.5 / +11.3 cells and +8.0
+// / +5.5 % (cell-centred velocities here). Asserted: the issue's bounds at 400 cells (5 cells,
+// 10 %), the velocity's also at 800, where the front is still ahead (within 15 cells: it does
+// not converge yet, issue #16), total energy to round-off.
+TEST(Extremes, NearVacuumFrontAndPeakVelocity) {
+  const double g = 1.4;
+  const exact::Riemann rs({1.0, 0.0, 1.0}, {1e-8, 0.0, 1e-10}, g, g);
+  // the exact position of rho = 1e-4 in the left fan (bisection in x / t on the sampled density)
+  double lo = rs.left_head_speed(), hi = rs.u_star();
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (rs.sample(mid).rho > 1e-4 ? lo : hi) = mid;
+  }
+  const double t = 0.06, x_exact = 0.5 + t * 0.5 * (lo + hi);
+  const int cells[2] = {400, 800};
+  for (int n = 0; n < 2; ++n) {
+    auto r = test::run_scene(test::load_scene(
+        "sod_x.yaml", {"regions.0.density=1e-8", "regions.0.pressure=1e-10", "time.end=0.06",
+                       "mesh.cells=[" + std::to_string(cells[n]) + ",2,2]"}));
+    ASSERT_TRUE(r.result.ok) << r.result.health.what;
+    const Profile p = profile_x(r);
+    const double front = (crossing(p, 1e-4, -1) - x_exact) / p.dx;
+    double peak = 0;
+    for (size_t i = 0; i < p.x.size(); ++i)
+      if (p.rho[i] > 1e-4) peak = std::max(peak, p.u[i]);
+    const double du = peak / rs.u_star() - 1;
+    const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
+    std::printf(
+        "near vacuum, %d cells: rho = 1e-4 at %+.1f cells from exact %.4f; peak u %.4f against "
+        "u* %.4f (%+.1f %%); total energy change %.2e\n",
+        cells[n], front, x_exact, peak, rs.u_star(), 100 * du, de);
+    EXPECT_LE(std::abs(front), n == 0 ? 5.0 : 15.0);
+    EXPECT_LE(std::abs(du), 0.10);
+    EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
+  }
 }
 
 TEST(Extremes, Problem123StaysPositive) {

@@ -31,6 +31,10 @@
 // the predictor. The fixed geometry's cycle keeps the 35 of issue #15. Computing the mid-step
 // faces in the corrector (each cell its six, the launch saved) was slower, as the fusions undone
 // below: 5.3 ms against 1.75 + 0.85 ms per cycle (bench_hydro Sedov 64^3, 2 threads).
+// The free-expansion rule (numerics.free_expansion, the default; docs/numerics.md "Free
+// expansion to the nodes") launches remap::expansion_impulse only in a sweep where some face
+// did its work (its face work rides in the face fluxes' exchange, its flag is cleared by that
+// launch): none in these Sedov cycles, one in Sod's first cycle (the 8:1 membrane, x sweep).
 // Issue #15 asks for at most 35 launches per single-material cycle at one rank. History: 130
 // (72 `halo::boundary` and 21 `halo::wall_node` in place of the 11 `halo::fill`), then 48 with
 // the one-launch halo, 35 with six fusions, 45 since three of them were undone because they
@@ -184,6 +188,7 @@ TEST(Launches, SingleMaterialCycleOneRank) {
   EXPECT_EQ(c.halo_pack, 0);   // no neighbour rank
   EXPECT_EQ(c.halo_other, 0);  // no separate wall-node or boundary launches
   EXPECT_EQ(c.total, 36);      // 11 + the 25 launches of kernels/hydro with the mid-step faces
+  EXPECT_EQ(c.by_name.count("remap::expansion_impulse"), 0u);  // (no face did work)
   // the fused ones: no stored face fluxes of their own, no separate volumes or EOS launch, the
   // start-of-step velocities copied by the predictor
   for (const char* gone : {"lagrange::volume_flux_x", "lagrange::volume_flux_y",
@@ -214,7 +219,10 @@ TEST(Launches, PeriodicAxesOneRank) {
   EXPECT_EQ(c.halo_fill, 11);
   EXPECT_EQ(c.halo_pack, 0);
   EXPECT_EQ(c.halo_other, 0);
-  EXPECT_EQ(c.total, 36);  // (the mid-step geometry's launch: the default)
+  // (the mid-step geometry's launch, the default; and the free-expansion rule's, whose work
+  // the 8:1 membrane's first x sweep does)
+  EXPECT_EQ(c.total, 37);
+  EXPECT_EQ(c.by_name.at("remap::expansion_impulse"), 1);
 }
 
 // Two ranks (the box split along one axis): an exchange with a neighbour rank is one pack and

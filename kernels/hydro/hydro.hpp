@@ -392,6 +392,12 @@ struct Options {
   // face volumes. Off: the undeformed cube's faces (first order in dt where flow converges or
   // diverges across a face). Single-material scenes without strength; the others ignore it.
   bool mid_geometry = true;  // (the scene key numerics.geometry, default midstep)
+  // The free-expansion rule (point.hpp expansion_share; docs/numerics.md, "Free expansion to
+  // the nodes"): a face whose gas enters a cell that would hold less than this fraction of the
+  // face's density gives the receiver the isentropically expanded energy and its nodes the
+  // rest as kinetic energy of the node pairs it pushes apart; 0 turns it off. Single-material
+  // ideal-gas scenes on split sweeps with the KE fix (the others ignore it).
+  Real free_expansion = Real(0.5);
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
@@ -481,6 +487,11 @@ struct State {
   // faces, stored in node-extent views: face d at index i sits at node coordinate i along d
   std::array<Field3, 3> vol_flux;
   std::array<Field3, 3> mass_flux, energy_flux;  // through faces normal to x, y, z
+  // the free-expansion rule (Options::free_expansion): the internal energy a face's donor pays
+  // beyond what its receiver takes, given to the face's node pairs as kinetic energy (split
+  // sweeps; allocated only where the rule can act)
+  Field3 expansion_work;
+  Kokkos::View<int, MemSpace> expansion_any;  // set where a sweep's faces did that work
 };
 
 struct TimeStep {
@@ -586,6 +597,9 @@ class Hydro {
   int heat_flux(Real dt);
   // whether the scene conducts (Noh's heat flux on, a single material)
   bool conducts() const { return opt_.heat_flux > 0 && !mm_; }
+  // whether the free-expansion rule acts (Options::free_expansion; single-material ideal gas,
+  // split sweeps, no modules)
+  bool free_expansion_acts() const { return expansion_gm1_ > 0; }
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   // After remap::momentum: whether a node on any rank raised State::ke_redo (with the option
   // on); if so the node losses are exchanged (their ghosts hold their owners' flags) and the
@@ -650,6 +664,12 @@ class Hydro {
   bool volumes_ready_ = false;
   RemapStep volumes_for_{};
   long ke_redone_ = 0;  // sweeps whose dual faces were redone (ke_redo)
+  // gamma - 1 of the scene's ideal gas where the free-expansion rule acts (else 0)
+  Real expansion_gm1_ = 0;
+  bool expanded_ = false;  // whether the current sweep's faces did free-expansion work
+  void expansion_impulse(int d);
+  bool expansion_worked();
+  int reflective_face(int d, int s) const;
 };
 
 }  // namespace mp::hydro

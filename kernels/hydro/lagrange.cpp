@@ -522,6 +522,12 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
       s_.energy_flux[d] = s_.energy_flux[0];
     }
   }
+  if (eos.size() == 1 && !opt.unsplit && opt.ke_fix && opt.free_expansion > 0 &&
+      eos[0].kind == eos::kIdealGas && opt.strength.kind == strength::kNoStrength && !opt.burn.on) {
+    expansion_gm1_ = Real(eos[0].params[0] - 1);
+    s_.expansion_work = mesh.new_field("expansion_work", N);
+    s_.expansion_any = Kokkos::View<int, MemSpace>("expansion_any");
+  }
   if (eos.size() > 1) {
     s_.qw = mesh.new_field("viscous_work", C);
     mats_.n = static_cast<int>(eos.size());

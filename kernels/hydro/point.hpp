@@ -217,6 +217,23 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_floor(Real e) {
   return -Real(0.5) * e;
 }
 
+// The free-expansion rule (issue #16; docs/numerics.md, "Free expansion to the nodes"): where
+// a face's gas, mass flux m at face density rho_face, enters a receiving cell of mass m_r and
+// volume v_r that would hold less than `ratio` of that density with it, the receiver takes
+// the gas's specific energy brought down the ideal-gas isentrope to the density it reaches,
+// (rho_after / rho_face)^(gamma - 1) of it; the donor still pays the whole and the rest pushes
+// the face's node pairs apart as kinetic energy (the work a resolved expansion would have done;
+// Hydro::expansion_impulse). Returns the share the receiver takes (1 where the rule does not
+// act).
+KOKKOS_INLINE_FUNCTION Real expansion_share(Real m, Real f, Real m_r, Real v_r, Real gm1,
+                                            Real ratio) {
+  const Real rho_face = f != 0 ? m / f : Real(0);
+  const Real rho_after = (m_r + mabs(m)) / v_r;
+  return rho_face > 0 && rho_after < ratio * rho_face
+             ? MP_KOKKOS_MATH::pow(rho_after / rho_face, gm1)
+             : Real(1);
+}
+
 // Mass and internal-energy flux through a face with volume flux f (signed along the axis) out of
 // a donor cell of volume `pre`, from van Leer face values of density (Courant number |f|/pre)
 // and of specific energy (the mass Courant number). up / donor / down ordered along the wind.

@@ -134,18 +134,22 @@ KOKKOS_INLINE_FUNCTION DualFace dual_face(const F3& mf, const F3& nm, const F3& 
 // the sweep are compile-time constants (the same point functions as the unsplit step, so the
 // same bits).
 
-// Mass and energy through the owned faces normal to D (single-material scenes).
-template <int D>
-void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const Field3& pre,
-                     const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
-                     int ord) {
+// Mass and energy through the owned faces normal to D (single-material scenes). With Expand (the
+// free-expansion rule acts: gm1 > 0, xw allocated), ef holds what the receiver takes and xw the
+// rest of what the donor pays (expansion_share), and any_work is raised where a face did work.
+template <int D, bool Expand>
+void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const Field3& pre,
+                       const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
+                       int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
+                       const Kokkos::View<int, MemSpace>& any_work) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
   // (k-columns, core/columns.hpp; the four cells along D around the face are loaded whatever
   // the wind, and the donor's stencil selected from them: fixed offsets, as dual_face_value)
   for_columns(
       "remap::cell_flux", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         const auto vfa = local(vf), pa = local(pre), ra = local(rho), ea = local(e);
-        const auto mfa = local(mf), efa = local(ef);
+        const auto mfa = local(mf), efa = local(ef), xwa = local(xw);
+        int any = 0;
 #pragma GCC ivdep
         for (int k = k0; k < k1; ++k) {
           const Real f = vfa(i, j, k);
@@ -153,9 +157,44 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
           Real m, en;
           column_face_flux(f, at, ra, ea, pa, ord, m, en);
           mfa(i, j, k) = m;
-          efa(i, j, k) = en;
+          if constexpr (!Expand) {
+            efa(i, j, k) = en;
+          } else {
+            // the receiver: cell 0 when f > 0, else -1
+            const int r = f > 0 ? 0 : -1;
+            const Real vr = at(pa, r);
+            // (not where the node plane behind the face, whose nodes the work pushes back, is a
+            // reflective wall: they cannot move)
+            const int c = D == 0 ? i : D == 1 ? j : k;
+            const int behind = f > 0 ? c - 1 : c + 1;
+            // a receiver compressed along the axis (its far face moving on slower than the near
+            // one) may be a shock's: there only a density ratio no shock makes, beyond
+            // (gamma - 1) / (gamma + 1), counts as free expansion
+            const Real vfar = f > 0 ? at(vfa, 1) : at(vfa, -1);
+            const bool squeezed = f > 0 ? vfar < f : vfar > f;
+            const Real limit = squeezed ? gm1 / (gm1 + 2) : ratio;
+            const Real share = behind == wall_lo || behind == wall_hi
+                                   ? Real(1)
+                                   : expansion_share(m, f, at(ra, r) * vr, vr, gm1, limit);
+            efa(i, j, k) = en * share;
+            xwa(i, j, k) = mabs(en) - mabs(en * share);
+            any |= int(share < 1);
+          }
         }
+        if (Expand && any) Kokkos::atomic_exchange(&any_work(), 1);
       });
+}
+template <int D>
+void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const Field3& pre,
+                     const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
+                     int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
+                     const Kokkos::View<int, MemSpace>& any_work) {
+  if (gm1 > 0)
+    cell_flux_columns<D, true>(lo, hi, vf, pre, rho, e, mf, ef, ord, xw, gm1, ratio, wall_lo,
+                               wall_hi, any_work);
+  else
+    cell_flux_columns<D, false>(lo, hi, vf, pre, rho, e, mf, ef, ord, ef, gm1, ratio, wall_lo,
+                                wall_hi, any_work);
 }
 
 // The dual faces (i, j, k0 .. k1 - 1) of a column, normal to D, into F, U, V, W, K. Ord and
@@ -400,7 +439,26 @@ struct KeFixColumns {
 template <int D>
 struct AxisCellUpdate {
   Field3 rho, e, pre, post, mf, ef;
+  // the free-expansion rule's work at each face, which the face's donor pays on top of ef
+  // (State::expansion_work; unallocated where the rule does not act)
+  Field3 xw;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    if (xw.data() != nullptr) {
+      constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
+      const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
+                 p1 = column(post, i, j);
+      const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy), el = column(ef, i, j),
+                 eh = column(ef, i + sx, j + sy), wl = column(xw, i, j),
+                 wh = column(xw, i + sx, j + sy);
+#pragma GCC ivdep
+      for (int k = k0; k < k1; ++k) {
+        // (the cell gives through its low face where the flux there is negative)
+        const Real work = (ml[k] < 0 ? wl[k] : Real(0)) + (mh[k + sz] > 0 ? wh[k + sz] : Real(0));
+        update_cell(r[k], en[k], p0[k], p1[k], Real(0) + (ml[k] - mh[k + sz]),
+                    (el[k] - eh[k + sz]) - work);
+      }
+      return;
+    }
     constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
     const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
                p1 = column(post, i, j);
@@ -541,13 +599,25 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       mm_remap_faces(d);
     else
       with_axis(d, [&](auto a) {
-        cell_flux_sweep<decltype(a)::value>(lo, hi, vf, pre, rho, e, mf, ef, ord);
+        cell_flux_sweep<decltype(a)::value>(
+            lo, hi, vf, pre, rho, e, mf, ef, ord, s_.expansion_work, expansion_gm1_,
+            opt_.free_expansion, reflective_face(d, 0), reflective_face(d, 1), s_.expansion_any);
       });
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
     HaloField efh{ef, Centering::Cell, {1, 1, 1}};
     mfh.face_axis = efh.face_axis = d;
     mfh.parity[d] = efh.parity[d] = -1;  // a flux normal to a wall changes sign in the mirror
-    halo_.exchange({mfh, efh});
+    // (the free-expansion work is exchanged, paid and given to the nodes only in sweeps where
+    // some rank's faces did any: none in most sweeps of most scenes)
+    expanded_ = expansion_gm1_ > 0 && expansion_worked();
+    if (expanded_) {
+      // (an amount, not a flux: its mirror keeps the sign, and the mirrored flux its donor)
+      HaloField xwh{s_.expansion_work, Centering::Cell, {1, 1, 1}};
+      xwh.face_axis = d;
+      halo_.exchange({mfh, efh, xwh});
+    } else {
+      halo_.exchange({mfh, efh});
+    }
   }
 
   // Cells: new mass and energy; one ghost layer is updated too, for the dual-mesh masses.
@@ -604,16 +674,17 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     const int hi[3] = {Mesh::ng + mesh_.owned_cells(0) + 1, Mesh::ng + mesh_.owned_cells(1) + 1,
                        Mesh::ng + mesh_.owned_cells(2) + 1};
     if (int(ax + ay + az) == 1) {
-      with_axis(
-          ax > 0   ? 0
-          : ay > 0 ? 1
-                   : 2,
-          [&](auto a) {
-            constexpr int D = decltype(a)::value;
-            const Field3 mf = D == 0 ? mfx : D == 1 ? mfy : mfz;
-            const Field3 ef = D == 0 ? efx : D == 1 ? efy : efz;
-            for_columns("remap::cell_update", lo, hi, AxisCellUpdate<D>{rho, e, pre, post, mf, ef});
-          });
+      with_axis(ax > 0   ? 0
+                : ay > 0 ? 1
+                         : 2,
+                [&](auto a) {
+                  constexpr int D = decltype(a)::value;
+                  const Field3 mf = D == 0 ? mfx : D == 1 ? mfy : mfz;
+                  const Field3 ef = D == 0 ? efx : D == 1 ? efy : efz;
+                  for_columns("remap::cell_update", lo, hi,
+                              AxisCellUpdate<D>{rho, e, pre, post, mf, ef,
+                                                expanded_ ? s_.expansion_work : Field3()});
+                });
     } else {
       Kokkos::parallel_for(
           "remap::cell_update", mesh_.cells_padded(1),
@@ -675,6 +746,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       });
       ke_redo_end();
     }
+    if (expanded_) expansion_impulse(d);
   } else {
     // The unsplit step computes each node's faces itself; the redo (as in the split sweep
     // above) runs the launch again with donor values on the faces of the flagged nodes, whose
@@ -742,6 +814,112 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   std::swap(s_.w, s_.wb);
   exchange_cells();
   exchange_nodes(s_.u, s_.v, s_.w);
+}
+
+// The free-expansion rule's second half (split sweeps, before the KE fix; docs/numerics.md
+// "Free expansion to the nodes"): the work W of a face at node plane p with flow direction s
+// (State::expansion_work) pushes apart the node pair (p - s, p), the node behind the face and
+// the one on it, a quarter of W for each of the face's four node columns. A node so has at most
+// two pairs along d, (n - 1, n) and (n, n + 1), each with the summed work w of its faces, and
+// takes equal and opposite impulses +-P, P chosen so that the pair's kinetic energy grows by w
+// (Delta its separation speed, mu its reduced mass):
+//   P Delta + P^2 / (2 mu) = w,
+// from the velocities and node masses before the sweep (ghosts included, so every rank finds
+// the same P). Momentum is kept exactly; the node's kinetic energy then changes by J u + J^2 /
+// (2 m) with its impulses' sum J on its remapped velocity and mass, and the difference from what
+// its pairs meant it to take joins its loss for the KE fix (kel, as MomentumFinish stores it),
+// so total energy is kept to round-off. (Its two impulses have opposite signs: the overlap is a
+// gain for the cells, not a charge on cold ones.)
+namespace {
+KOKKOS_INLINE_FUNCTION Real pair_impulse(Real w, Real delta, Real mu) {
+  const Real root = msqrt(delta * delta + 2 * w / mu);
+  return delta >= 0 ? 2 * w / (delta + root) : mu * (root - delta);
+}
+}  // namespace
+
+// The local index along d of the face on the rank's reflective wall at side s (0 low, 1 high),
+// or a value no face has.
+int Hydro::reflective_face(int d, int s) const {
+  if (!mesh_.physical_boundary(d, s) || mesh_.boundary(d, s) != BoundaryKind::Reflective)
+    return -1000000;
+  return s == 0 ? Mesh::ng : Mesh::ng + mesh_.owned_cells(d);
+}
+
+// Whether any face of any rank did free-expansion work in this sweep (State::expansion_any, set
+// by the face-flux kernel; cleared here for the next sweep).
+bool Hydro::expansion_worked() {
+  int mine = 0, any = 0;
+  Kokkos::deep_copy(mine, s_.expansion_any);
+  MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, mesh_.comm());
+  // (cleared by expansion_impulse, which runs wherever a flag was set: no fill launch here)
+  return any != 0;
+}
+
+void Hydro::expansion_impulse(int d) {
+  auto rho = s_.rho, pre = s_.pre_vol, post = s_.post_vol, nm = s_.node_mass;
+  auto xw = s_.expansion_work, mf = s_.mass_flux[d], kel = s_.ke_loss;
+  const Field3 u0 = d == 0 ? s_.u : d == 1 ? s_.v : s_.w;
+  const Field3 u1 = d == 0 ? s_.ub : d == 1 ? s_.vb : s_.wb;
+  const int sx = d == 0, sy = d == 1, sz = d == 2;
+  // the two axes across d
+  const int t1 = d == 0 ? 1 : 0, t2 = d == 2 ? 1 : 2;
+  auto flag = s_.expansion_any;
+  int olo[3], ohi[3];
+  mesh_.box(Centering::Node, Region::Owned, olo, ohi);
+  const int i0 = olo[0], j0 = olo[1], k0 = olo[2];
+  Kokkos::parallel_for(
+      "remap::expansion_impulse", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+        if (i == i0 && j == j0 && k == k0) flag() = 0;  // (the sweep's flag, read already)
+        // the work of the node's two pairs along d: (n - 1, n) below, (n, n + 1) above; a face
+        // at plane p with flow s (+-1) pushes apart its nodes p - s (behind) and p (on it)
+        Real w_lo = 0, w_hi = 0;
+        for (int b = 0; b < 2; ++b)
+          for (int a = 0; a < 2; ++a)
+            for (int p = -1; p <= 1; ++p) {
+              int o[3] = {i + p * sx, j + p * sy, k + p * sz};
+              o[t1] -= a;
+              o[t2] -= b;
+              const Real work = Real(0.25) * xw(o[0], o[1], o[2]);
+              const bool pos = mf(o[0], o[1], o[2]) > 0;
+              // plane n: the pair below if the flow is +, above if -; plane n - 1 (flow -): below;
+              // plane n + 1 (flow +): above
+              if (p == 0) (pos ? w_lo : w_hi) += work;
+              if (p == -1 && !pos) w_lo += work;
+              if (p == 1 && pos) w_hi += work;
+            }
+        if (!(w_lo > 0) && !(w_hi > 0)) return;
+        const Real un = u0(i, j, k), mn = nm(i, j, k);
+        Real J = 0, meant = 0;
+        if (w_lo > 0) {
+          const Real ul = u0(i - sx, j - sy, k - sz), ml = nm(i - sx, j - sy, k - sz);
+          const Real P = pair_impulse(w_lo, un - ul, ml * mn / (ml + mn));
+          J += P;
+          meant += P * un + P * P / (2 * mn);
+        }
+        if (w_hi > 0) {
+          const Real uh = u0(i + sx, j + sy, k + sz), mh = nm(i + sx, j + sy, k + sz);
+          const Real P = pair_impulse(w_hi, uh - un, mh * mn / (mh + mn));
+          J -= P;
+          meant += -P * un + P * P / (2 * mn);
+        }
+        // the node's remapped mass (an eighth of its 8 cells' after the sweep: the totals' mass)
+        Real m = 0;
+        for (int c = 0; c < 2; ++c)
+          for (int bb = 0; bb < 2; ++bb)
+            for (int aa = 0; aa < 2; ++aa)
+              m += rho(i - aa, j - bb, k - c) * post(i - aa, j - bb, k - c);
+        m *= Real(0.125);
+        const Real v = u1(i, j, k);
+        const Real dv = J / m;
+        u1(i, j, k) = v + dv;
+        // energy meant for the node that it did not take: to its cells (as a loss)
+        const Real left = meant - (m * v * dv + Real(0.5) * m * dv * dv);
+        // kel as MomentumFinish stores it: the loss L >= 0, or L over the cells' content
+        const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
+        const Real stored = kel(i, j, k);
+        const Real L = (stored >= 0 ? stored : stored * content) + left;
+        kel(i, j, k) = L >= 0 ? L : content > 0 ? L / content : Real(0);
+      });
 }
 
 }  // namespace mp::hydro

@@ -516,6 +516,7 @@ std::map<std::string, std::string> resolved_numerics(const Scene& s) {
           {"numerics.viscosity.isotropic", real(n.q_isotropic)},
           {"numerics.heat_flux", real(n.heat_flux)},
           {"numerics.geometry", n.geometry},
+          {"numerics.free_expansion", real(n.free_expansion)},
           {"numerics.ke_fix", n.ke_fix ? "true" : "false"},
           {"numerics.ke_fix_share", n.ke_fix_share},
           {"numerics.ke_fix_redo", n.ke_fix_redo ? "true" : "false"},
@@ -564,9 +565,10 @@ Scene read_scene(const Deck& deck) {
     const DeckNode n = root.child("numerics");
     n.expect_keys({"advection", "remap", "viscosity", "ke_fix", "ke_fix_share", "ke_fix_redo",
                    "samples", "layout", "interface", "min_fraction", "closure",
-                   "relaxation_iterations", "solid_floor", "void_density", "heat_flux",
-                   "geometry"});
+                   "relaxation_iterations", "solid_floor", "void_density", "heat_flux", "geometry",
+                   "free_expansion"});
     s.numerics.heat_flux = n.get_real("heat_flux", 0, 100, s.numerics.heat_flux);
+    s.numerics.free_expansion = n.get_real("free_expansion", 0, 0.99, s.numerics.free_expansion);
     s.numerics.geometry = n.get_enum("geometry", {"midstep", "fixed"}, s.numerics.geometry);
     s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
     s.numerics.solid_floor = n.get_real("solid_floor", 0, 0.99, s.numerics.solid_floor);

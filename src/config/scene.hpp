@@ -100,15 +100,20 @@ struct NumericsSpec {
   // material scenes without strength; docs/numerics.md "Mid-step geometry") | fixed (the
   // undeformed faces: first-order in dt u / r in converging flow, the cheaper cycle)
   std::string geometry = "midstep";
+  // the free-expansion rule (kernels/hydro/point.hpp expansion_share; docs/numerics.md "Free
+  // expansion to the nodes"): the density ratio below which a face's gas entering a lighter
+  // cell keeps only its isentropically expanded energy, the rest the kinetic energy of the node
+  // pairs it pushes apart; 0 off. Single-material ideal-gas scenes on split sweeps, KE fix on.
+  double free_expansion = 0.5;
   bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
   std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
   // single-material: redo the momentum remap with donor values at the nodes that made more
   // kinetic energy than their cells can pay (hydro.hpp, ke_redo); false leaves it to the floor
   bool ke_fix_redo = true;
-  int samples = 4;                    // sub-cell samples per axis for the initial volume fractions
-  std::string layout = "compact";     // per-material storage: compact | dense
-  std::string interface = "youngs";   // material fluxes: youngs (PLIC) | slic | none
-  double min_fraction = 1e-14;        // a material below this volume fraction leaves a cell
+  int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
+  std::string layout = "compact";    // per-material storage: compact | dense
+  std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
+  double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
   std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
   int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
   double void_density = 0;  // g/cm^3: below it a material has no pressure, no sound (0: off)

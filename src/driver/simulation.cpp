@@ -329,6 +329,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   opt.q_quadratic = Real(scene_.numerics.q_quadratic);
   opt.q_isotropic = Real(scene_.numerics.q_isotropic);
   opt.heat_flux = Real(scene_.numerics.heat_flux);
+  opt.free_expansion = Real(scene_.numerics.free_expansion);
   opt.mid_geometry = scene_.numerics.geometry == "midstep";
   opt.cfl = Real(scene_.time.cfl);
   opt.growth = Real(scene_.time.growth);
@@ -398,7 +399,15 @@ std::vector<std::string> Simulation::modules() const {
                    : std::string()) +
               // the Lagrangian step's geometry, as the hydro decided it (single material, no
               // strength)
-              (hydro_->mid_geometry() ? ", mid-step geometry" : ", fixed geometry"));
+              (hydro_->mid_geometry() ? ", mid-step geometry" : ", fixed geometry") +
+              // the free-expansion rule, where the hydro allocated it
+              (hydro_->free_expansion_acts() ? [&] {
+                std::ostringstream os;
+                os << ", free expansion to the nodes below density ratio "
+                   << scene_.numerics.free_expansion;
+                return os.str();
+              }()
+                                             : std::string()));
   if (scene_.numerics.void_density > 0) {
     std::ostringstream os;
     os << "void: a material below " << scene_.numerics.void_density
