@@ -337,6 +337,17 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_share(const Field3& kel, int i, int j, int k,
   return ke_fix_share_of([&](int a, int b, int c) { return kel(i + a, j + b, k + c); }, m, w);
 }
 
+// A node's kinetic-energy loss L as kel stores it (MomentumFinish, Hydro::expansion_impulse): L
+// where L >= 0, else L per unit internal energy `content` of its 8 cells (0 where they have
+// none; the quotient taken whatever the sign: a select, not a branch); and back.
+KOKKOS_INLINE_FUNCTION Real ke_stored(Real loss, Real content) {
+  const Real per_content = loss / content;
+  return loss >= 0 ? loss : content > 0 ? per_content : Real(0);
+}
+KOKKOS_INLINE_FUNCTION Real ke_unstored(Real stored, Real content) {
+  return stored >= 0 ? stored : stored * content;
+}
+
 // A node whose kinetic-energy discrepancy, as MomentumFinish stores it (kel: the loss L >= 0, or
 // L per unit internal energy of its 8 cells where the remap made kinetic energy), says it made
 // more than 1/16 of its cells' internal energy: its dual faces are redone with donor values

@@ -282,9 +282,7 @@ struct MomentumFinish {
       return false;
     } else {
       // (the 8 loads whatever the sign: a select, not a branch)
-      const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
-      const Real per_content = loss / content;
-      const Real stored = loss >= 0 ? loss : content > 0 ? per_content : Real(0);
+      const Real stored = ke_stored(loss, corner_sum(pre, i - 1, j - 1, k - 1));
       kel(i, j, k) = stored;
       return ke_redo(stored);
     }
@@ -903,12 +901,10 @@ void Hydro::expansion_impulse(int d) {
           meant += -P * un + P * P / (2 * mn);
         }
         // the node's remapped mass (an eighth of its 8 cells' after the sweep: the totals' mass)
-        Real m = 0;
-        for (int c = 0; c < 2; ++c)
-          for (int bb = 0; bb < 2; ++bb)
-            for (int aa = 0; aa < 2; ++aa)
-              m += rho(i - aa, j - bb, k - c) * post(i - aa, j - bb, k - c);
-        m *= Real(0.125);
+        const Real m =
+            Real(0.125) *
+            corner_sum([&](int ci, int cj, int ck) { return rho(ci, cj, ck) * post(ci, cj, ck); },
+                       i - 1, j - 1, k - 1);
         const Real v = u1(i, j, k);
         const Real dv = J / m;
         u1(i, j, k) = v + dv;
@@ -916,9 +912,7 @@ void Hydro::expansion_impulse(int d) {
         const Real left = meant - (m * v * dv + Real(0.5) * m * dv * dv);
         // kel as MomentumFinish stores it: the loss L >= 0, or L over the cells' content
         const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
-        const Real stored = kel(i, j, k);
-        const Real L = (stored >= 0 ? stored : stored * content) + left;
-        kel(i, j, k) = L >= 0 ? L : content > 0 ? L / content : Real(0);
+        kel(i, j, k) = ke_stored(ke_unstored(kel(i, j, k), content) + left, content);
       });
 }
 
