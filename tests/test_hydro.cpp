@@ -324,8 +324,11 @@ TEST(Conservation, ClosedBoxMassToRoundOff) {
   EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   // and the KE fix's floor never bound (Totals::ke_fix_unpaid)
   EXPECT_EQ(r.result.end.ke_fix_unpaid, 0.0);
-  // the wall cells hold the initial state: so do cells far from the waves (x = 0.125, 0.94)
-  EXPECT_EQ(p_left, p[nx / 8]);
+  // the wall cells hold the initial state: so do cells far from the waves (x = 0.1025, 0.94).
+  // (Until 2026-12-06 the left probe was x = 0.125, cell 25: with free_expansion 0.7 the
+  // rarefaction head's numerical tail reaches it at 4e-16 of the pressure, cell 26 at 6e-15;
+  // the probe now stands 5 cells further off, where that tail is far below one ulp.)
+  EXPECT_EQ(p_left, p[nx / 10]);
   EXPECT_EQ(p_right, p[nx - 1 - nx / 16]);
   EXPECT_LE(std::abs(px - impulse), bound);
 }
@@ -357,19 +360,19 @@ TEST(Extremes, LeBlancStaysPositive) {
 // (numerics.free_expansion, docs/numerics.md "Free expansion to the nodes") the heavy gas's
 // start-up expansion into the light cells left an entropy spike on the light side of the
 // contact that ran the shock +14.3 / +13.4 cells ahead and the contact energy +25.8 / +22.7 %
-// high (a fixed 13 cells at 1600 and 3200 too: first order in position). With it (2026-12-05,
-// double): +5.5 / +5.1 cells, +12.1 / +9.0 % (tools/riemann_check.py gives the same; the shock
-// error is not monotone in N, +0.2 cells at 360, +1.0 at 720, +5.6 at 1600: which faces at the
-// start cross the rule's density ratio depends on the mesh). Asserted: the shock within 6
-// cells at both (the issue's 5 is not met at 800: issue #16), the contact energy within the
-// issue's 10 % at 800 and 13 % at 400, total energy to round-off.
+// high (a fixed 13 cells at 1600 and 3200 too: first order in position). With its first ratio
+// 0.5 (2026-12-05): +5.5 / +5.1 cells, +12.1 / +9.0 %; with the default 0.7 (2026-12-06,
+// double): +2.9 / +1.4 cells, +9.3 / +7.4 % (tools/riemann_check.py gives the same; -1.8, -2.1
+// and +3.0 cells at 360, 720 and 1600: not monotone in N, which start-up faces cross the ratio
+// depends on the mesh). Asserted: the issue's bounds, the shock within 5 cells at both and the
+// contact energy within 10 % at 800 (11 % at 400, was 13 %), total energy to round-off.
 TEST(Extremes, LeBlancShockAndContactEnergy) {
   const double g = 5.0 / 3.0;
   const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
   const double t = 6, exact_shock = 3 + t * rs.right_head_speed();
   const double e_star = rs.p_star() / ((g - 1) * rs.rho_star_right());
   const int cells[2] = {400, 800};
-  const double contact_bound[2] = {0.13, 0.10};
+  const double contact_bound[2] = {0.11, 0.10};
   for (int n = 0; n < 2; ++n) {
     auto r = test::run_scene(
         test::load_scene("leblanc.yaml", {"mesh.cells=[" + std::to_string(cells[n]) + ",2,2]"}));
@@ -389,7 +392,7 @@ TEST(Extremes, LeBlancShockAndContactEnergy) {
         "LeBlanc, %d cells: shock at %.4f (exact %.4f), %+.1f cells; contact e peak %.4f "
         "against e*R %.4f (%+.1f %%); total energy change %.2e\n",
         cells[n], x_shock, exact_shock, shock_cells, e_peak, e_star, 100 * over, de);
-    EXPECT_LE(std::abs(shock_cells), 6.0);
+    EXPECT_LE(std::abs(shock_cells), 5.0);
     EXPECT_LE(over, contact_bound[n]);
     EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   }
@@ -399,11 +402,14 @@ TEST(Extremes, LeBlancShockAndContactEnergy) {
 // expands into the vacuum at up to its escape speed 2 c_L / (gamma - 1) = 5.92. Before the
 // free-expansion rule (numerics.free_expansion, docs/numerics.md "Free expansion to the
 // nodes") the remap's heating of gas entering much lighter cells ran the rho = 1e-4 crossing
-// +23.6 / +47.9 cells ahead at 400 / 800 cells (not converging) and the gas beside it 27 / 21 %
-// above the exact star velocity (tools/riemann_check.py); with it +1.5 / +11.3 cells and +8.0
-// / +5.5 % (cell-centred velocities here). Asserted: the issue's bounds at 400 cells (5 cells,
-// 10 %), the velocity's also at 800, where the front is still ahead (within 15 cells: it does
-// not converge yet, issue #16), total energy to round-off.
+// +23.6 / +47.9 cells ahead at 400 / 800 cells and the gas beside it 27 / 21 % above the exact
+// star velocity (tools/riemann_check.py); with the ratio 0.5 +1.5 / +11.3 cells, +8.0 / +5.5 %;
+// with the default 0.7 (2026-12-06) -3.3 / -0.8 cells, +3.9 / -0.2 % (cell-centred velocities
+// here). Asserted: the issue's bounds at 400 cells (5 cells, 10 %), the velocity's also at 800
+// and the front there within 8 cells (was 15). Not a convergence measure at these meshes: the
+// exact solution holds only 1.1e-6 of mass beyond rho = 1e-4, under 1/500 of one initial cell's
+// mass even at 1600 cells, where the crossing is +37 cells (docs/numerics.md). Total energy to
+// round-off.
 TEST(Extremes, NearVacuumFrontAndPeakVelocity) {
   const double g = 1.4;
   const exact::Riemann rs({1.0, 0.0, 1.0}, {1e-8, 0.0, 1e-10}, g, g);
@@ -431,7 +437,7 @@ TEST(Extremes, NearVacuumFrontAndPeakVelocity) {
         "near vacuum, %d cells: rho = 1e-4 at %+.1f cells from exact %.4f; peak u %.4f against "
         "u* %.4f (%+.1f %%); total energy change %.2e\n",
         cells[n], front, x_exact, peak, rs.u_star(), 100 * du, de);
-    EXPECT_LE(std::abs(front), n == 0 ? 5.0 : 15.0);
+    EXPECT_LE(std::abs(front), n == 0 ? 5.0 : 8.0);
     EXPECT_LE(std::abs(du), 0.10);
     EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   }

@@ -408,7 +408,7 @@ struct Options {
   // face's density gives the receiver the isentropically expanded energy and its nodes the
   // rest as kinetic energy of the node pairs it pushes apart; 0 turns it off. Single-material
   // ideal-gas scenes on split sweeps with the KE fix (the others ignore it).
-  Real free_expansion = Real(0.5);
+  Real free_expansion = Real(0.7);
   Real cfl = 0.5;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety

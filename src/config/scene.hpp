@@ -104,7 +104,7 @@ struct NumericsSpec {
   // expansion to the nodes"): the density ratio below which a face's gas entering a lighter
   // cell keeps only its isentropically expanded energy, the rest the kinetic energy of the node
   // pairs it pushes apart; 0 off. Single-material ideal-gas scenes on split sweeps, KE fix on.
-  double free_expansion = 0.5;
+  double free_expansion = 0.7;
   bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
   std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
   // single-material: redo the momentum remap with donor values at the nodes that made more
