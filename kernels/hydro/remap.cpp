@@ -441,13 +441,13 @@ struct AxisCellUpdate {
   // (State::expansion_work; unallocated where the rule does not act)
   Field3 xw;
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
+    const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
+               p1 = column(post, i, j);
+    const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy), el = column(ef, i, j),
+               eh = column(ef, i + sx, j + sy);
     if (xw.data() != nullptr) {
-      constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
-      const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
-                 p1 = column(post, i, j);
-      const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy), el = column(ef, i, j),
-                 eh = column(ef, i + sx, j + sy), wl = column(xw, i, j),
-                 wh = column(xw, i + sx, j + sy);
+      const auto wl = column(xw, i, j), wh = column(xw, i + sx, j + sy);
 #pragma GCC ivdep
       for (int k = k0; k < k1; ++k) {
         // (the cell gives through its low face where the flux there is negative)
@@ -457,11 +457,6 @@ struct AxisCellUpdate {
       }
       return;
     }
-    constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
-    const auto r = column(rho, i, j), en = column(e, i, j), p0 = column(pre, i, j),
-               p1 = column(post, i, j);
-    const auto ml = column(mf, i, j), mh = column(mf, i + sx, j + sy), el = column(ef, i, j),
-               eh = column(ef, i + sx, j + sy);
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k)
       update_cell(r[k], en[k], p0[k], p1[k], Real(0) + (ml[k] - mh[k + sz]),
