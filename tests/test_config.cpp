@@ -61,6 +61,9 @@ const std::vector<std::string> kBase = {
     "  write: false",                              // 41
 };
 
+// Line 21 of the base deck with a second (unused) material after it: a multi-material scene.
+const char* const kSecondGas = "    gamma: 1.4\n  - name: air\n    eos: ideal_gas\n    gamma: 2";
+
 // The base deck with lines replaced (1-based; "" blanks a line and keeps the numbering).
 std::string deck(const std::map<int, std::string>& edits = {}) {
   std::string text;
@@ -110,7 +113,7 @@ TEST(Deck, BaseDeckIsValid) {
   EXPECT_EQ(s.mesh.bc[2][0], mp::BoundaryKind::Outflow);
   EXPECT_EQ(s.mesh.bc[2][1], mp::BoundaryKind::Reflective);
   EXPECT_EQ(s.time.end, 0.1);
-  EXPECT_EQ(s.numerics.advection, "second");
+  EXPECT_EQ(s.numerics.advection, mp::hydro::Advection::Second);
   ASSERT_EQ(s.regions.size(), 3u);
   EXPECT_EQ(s.regions[1].shape.kind, "box");
   EXPECT_TRUE(s.regions[1].has_pressure);
@@ -189,10 +192,12 @@ TEST(Deck, EnumerationErrors) {
   expect_holds(
       error_of(deck({{16, "  ke_fix_share: by_mass"}})),
       {"deck.yaml:16:", "key 'numerics.ke_fix_share'", "'by_mass' is not one of: mass, equal"});
-  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).numerics.ke_fix_share, "mass");
-  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck({{16, "  ke_fix_share: equal"}}), "deck.yaml"))
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).numerics.ke_fix_share,
+            mp::hydro::KeFixShare::Mass);
+  EXPECT_EQ(mp::read_scene(mp::Deck::parse(deck({{16, "  ke_fix_share: equal"}, {21, kSecondGas}}),
+                                           "deck.yaml"))
                 .numerics.ke_fix_share,
-            "equal");
+            mp::hydro::KeFixShare::Equal);
   expect_holds(error_of(deck({{20, "    eos: ideal"}})),
                {"deck.yaml:20:", "key 'materials.0.eos'", "'ideal' is not one of: ideal_gas"});
   expect_holds(error_of(deck({{28, "    shape: cube"}})),
@@ -325,6 +330,46 @@ TEST(Deck, MaterialsAndRegions) {
   EXPECT_FALSE(mp::read_scene(mp::Deck::parse(deck(), "deck.yaml")).materials[0].has_p_min);
 }
 
+// An option that applies to the other kind of scene is refused with file:line and key (config/
+// options.hpp, numerics_scopes): the hydro would ignore it, and the run would not be the one
+// the deck describes.
+TEST(Deck, OptionsOfTheOtherKindOfSceneAreRefused) {
+  // single-material options on a two-material scene
+  for (const char* line :
+       {"  heat_flux: 8", "  geometry: fixed", "  free_expansion: 0.5", "  ke_fix_redo: false"}) {
+    const std::string key = std::string(line).substr(2, std::string(line).find(':') - 2);
+    expect_holds(error_of(deck({{16, line}, {21, kSecondGas}})),
+                 {"deck.yaml:16:", "key 'numerics." + key + "'",
+                  "applies to single-material scenes only", "this scene has 2 materials"});
+    // on one material the same line is read
+    EXPECT_NO_THROW(mp::read_scene(mp::Deck::parse(deck({{16, line}}), "deck.yaml"))) << line;
+  }
+  // multi-material options on a one-material scene
+  for (const char* line :
+       {"  layout: dense", "  interface: slic", "  closure: relaxation", "  ke_fix_share: equal",
+        "  min_fraction: 1e-10", "  relaxation_iterations: 5", "  solid_floor: 0.5"}) {
+    const std::string key = std::string(line).substr(2, std::string(line).find(':') - 2);
+    expect_holds(error_of(deck({{16, line}})),
+                 {"deck.yaml:16:", "key 'numerics." + key + "'",
+                  "applies to multi-material scenes only", "this scene has one material"});
+    EXPECT_NO_THROW(
+        mp::read_scene(mp::Deck::parse(deck({{16, line}, {21, kSecondGas}}), "deck.yaml")))
+        << line;
+  }
+  // the same from the command line names the --set
+  expect_holds(error_of(deck(), {"numerics.layout=dense"}),
+               {"--set numerics.layout=dense", "applies to multi-material scenes only"});
+  expect_holds(error_of(deck({{21, kSecondGas}}), {"numerics.geometry=fixed"}),
+               {"--set numerics.geometry=fixed", "applies to single-material scenes only"});
+  // options of every scene stay accepted on both
+  for (const char* line : {"  advection: first", "  samples: 2", "  void_density: 1e-6"}) {
+    EXPECT_NO_THROW(mp::read_scene(mp::Deck::parse(deck({{16, line}}), "deck.yaml"))) << line;
+    EXPECT_NO_THROW(
+        mp::read_scene(mp::Deck::parse(deck({{16, line}, {21, kSecondGas}}), "deck.yaml")))
+        << line;
+  }
+}
+
 TEST(Deck, YamlSyntaxError) {
   std::string m = error_of(deck({{9, "  y: [periodic"}}));
   expect_holds(m, {"deck.yaml:", "YAML syntax error"});
@@ -373,7 +418,7 @@ TEST(Deck, OverridesChangeValues) {
        "numerics.viscosity.linear=0", "output.write=true", "boundaries.x=outflow"}));
   EXPECT_EQ(s.mesh.cells, (std::array<int, 3>{8, 8, 8}));
   EXPECT_EQ(s.regions[1].density, 2.5);
-  EXPECT_EQ(s.numerics.advection, "first");
+  EXPECT_EQ(s.numerics.advection, mp::hydro::Advection::First);
   EXPECT_EQ(s.time.end, 0.02);
   EXPECT_EQ(s.numerics.q_linear, 0.0);
   EXPECT_EQ(s.numerics.q_quadratic, 1.0);
@@ -382,7 +427,7 @@ TEST(Deck, OverridesChangeValues) {
   // an override may add a key the deck leaves out
   const mp::Scene t =
       mp::read_scene(mp::Deck::parse(without(14, 17), "deck.yaml", {"numerics.advection=first"}));
-  EXPECT_EQ(t.numerics.advection, "first");
+  EXPECT_EQ(t.numerics.advection, mp::hydro::Advection::First);
 }
 
 TEST(Deck, EditDistanceAndNearest) {
@@ -440,7 +485,7 @@ TEST(Deck, ShippedDecksParse) {
       const mp::Scene small =
           mp::read_scene(mp::Deck::load(f, {"mesh.cells=[16,16,16]", "numerics.advection=first"}));
       EXPECT_EQ(small.mesh.cells, (std::array<int, 3>{16, 16, 16}));
-      EXPECT_EQ(small.numerics.advection, "first");
+      EXPECT_EQ(small.numerics.advection, mp::hydro::Advection::First);
     } catch (const mp::InputError& e) {
       ADD_FAILURE() << e.what();
     }

@@ -27,8 +27,8 @@
 
 #include "burn/burn.hpp"
 #include "burn/lighting.hpp"
-#include "io/hdf5_writer.hpp"
 #include "materials/layout.hpp"
+#include "mesh/field.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 

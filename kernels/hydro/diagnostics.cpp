@@ -156,20 +156,20 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   TimeStep ts;
   ts.dt = Real(global.dt);
   ts.cell = {cell[0], cell[1], cell[2]};
-  ts.limit = cell[3] ? "courant_sum" : "cfl";
+  ts.limit = cell[3] ? DtLimit::CourantSum : DtLimit::Cfl;
   if (dt_old > 0 && ts.dt > opt_.growth * dt_old) {
     ts.dt = opt_.growth * dt_old;
-    ts.limit = "growth";
+    ts.limit = DtLimit::Growth;
   }
   if (ts.dt > opt_.dt_max) {
     ts.dt = opt_.dt_max;
-    ts.limit = "max";
+    ts.limit = DtLimit::Max;
   }
   // The clock is double whatever Real is: in a float build, rounding t to float could make
   // the remaining time zero (or negative) and stall the run one step short of the end.
   if (t + double(ts.dt) > t_end) {
     ts.dt = Real(t_end - t);
-    ts.limit = "end";
+    ts.limit = DtLimit::End;
   }
   return ts;
 }

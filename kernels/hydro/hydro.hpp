@@ -14,9 +14,10 @@
 #include "burn/module.hpp"
 #include "core/columns.hpp"
 #include "eos/eos.hpp"
+#include "hydro/numerics.hpp"
 #include "hydro/point.hpp"
-#include "io/hdf5_writer.hpp"
 #include "materials/layout.hpp"
+#include "mesh/field.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 #include "strength/module.hpp"
@@ -387,69 +388,73 @@ inline double effective_min_fraction(double requested) {
 }
 
 struct Options {
-  int order = 2;  // advection order: 2 van Leer, 1 donor cell
-  Real q_linear = 0.2;
-  Real q_quadratic = 1.0;
+  // The deck's numerics (numerics.hpp holds their one set of defaults; Options() takes them).
+  Options() : Options(Numerics{}, StepControl{}) {}
+  Options(const Numerics& n, const StepControl& t);
+
+  int order;  // advection order: 2 van Leer, 1 donor cell (numerics.advection)
+  Real q_linear;
+  Real q_quadratic;
   // the viscous stress Q = q ((1 - b) S + b I), b = q_isotropic (point.hpp): 0 the tensor, 1 the
   // scalar q of a pressure
-  Real q_isotropic = 0;
+  Real q_isotropic;
   // Noh's artificial heat flux (conduction.cpp): the coefficient h of the conduction of
   // internal energy between face neighbours that the viscosity compresses; 0 turns it off.
   // Single-material scenes (a multi-material scene ignores it).
-  Real heat_flux = 0;
+  Real heat_flux;
   // The Lagrangian step's pressure forces on the mid-step geometry (docs/numerics.md, "Mid-step
   // geometry"): each face's corner vectors at its nodes moved by dt/2 u^n, the cell's work the
   // forces' work (total energy kept to round-off), its volume change the matching second-order
   // face volumes. Off: the undeformed cube's faces (first order in dt where flow converges or
   // diverges across a face). Single-material scenes without strength; the others ignore it.
-  bool mid_geometry = true;  // (the scene key numerics.geometry, default midstep)
+  bool mid_geometry;  // (the scene key numerics.geometry)
   // The free-expansion rule (point.hpp expansion_share; docs/numerics.md, "Free expansion to
   // the nodes"): a face whose gas enters a cell that would hold less than this fraction of the
   // face's density gives the receiver the isentropically expanded energy and its nodes the
   // rest as kinetic energy of the node pairs it pushes apart; 0 turns it off. Single-material
   // ideal-gas scenes on split sweeps with the KE fix (the others ignore it).
-  Real free_expansion = Real(0.7);
-  Real cfl = 0.5;
+  Real free_expansion;
+  Real cfl;
   // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
   // sound speed and the transport speed limit the step each on its own, with its own safety
   // factor: dt = min_d min(cfl dx_d / c_eff, cfl_transport dx_d / |u_d|) (perf/timestep_study.cpp
   // measures it on the verification scenes; docs/numerics.md says why it is not the default).
   bool separate_limits = false;
   Real cfl_transport = 0.5;
-  Real growth = 1.1;
-  Real dt_max = 1e30;
+  Real growth;
+  Real dt_max;
   // Give the kinetic energy that the momentum remap dissipates back to the cells as internal
   // energy (DeBar's correction, see Benson, Comput. Methods Appl. Mech. Eng. 99:235, 1992),
   // so total energy is conserved to round-off.
-  bool ke_fix = true;
+  bool ke_fix;
   // Multi-material scenes: a node's loss goes to its 8 cells in proportion to their mass (every
   // cell takes the same specific energy; numerics.ke_fix_share: mass, the default) or an eighth
   // to each (equal, the rule before 2026-12-03). Single-material scenes have their own budget
   // (ke_fix_share() above) and ignore it.
-  bool ke_fix_by_mass = true;
+  bool ke_fix_by_mass;
   // Single-material scenes: where a node made more kinetic energy than its cells can pay
   // (ke_redo), redo its dual faces with donor values (numerics.ke_fix_redo; remap.cpp).
-  bool ke_fix_redo = true;
+  bool ke_fix_redo;
   // One remap step over all axes instead of three split sweeps (symmetric under permutations
   // of the axes; the time step then keeps the sum of the axes' Courant numbers below cfl).
-  bool unsplit = false;
+  bool unsplit;
   // Multi-material scenes (two or more EOS): storage of the per-material state, interface
-  // reconstruction of the material fluxes (0 Youngs PLIC, 1 SLIC, 2 none: fraction-weighted),
+  // reconstruction of the material fluxes (Youngs PLIC, SLIC, or none: fraction-weighted),
   // and the volume fraction below which a material leaves a cell (its mass and energy go to
   // the largest material of the cell).
-  mat::LayoutKind layout = mat::LayoutKind::Compact;
-  int interface = 0;
-  Real min_fraction = Real(1e-14);
+  mat::LayoutKind layout;
+  Interface interface;
+  Real min_fraction;  // the deck's, raised to kMinFractionFloor
   // Mixed-cell closure of the Lagrangian step: equal strain (false), or equal strain followed
   // by pressure relaxation (true, kernels/hydro/relax.hpp) with at most relax_iterations
   // Newton updates per cycle, stopping once the pressures agree to relax_tol (relative).
-  bool relax = false;
-  int relax_iterations = 20;
+  bool relax;
+  int relax_iterations;
   // Solid floor (docs/numerics.md, "Stretched solids in mixed cells"): a Mie-Grueneisen
   // material of a mixed cell below solid_floor x rho0 after the corrector is put back at that
   // density, its volume going to the cell's other materials without work (free expansion into
   // the void a failing solid opens); 0 leaves equal strain alone.
-  Real solid_floor = 0;
+  Real solid_floor;
   // (1e-10, or 64 ulps where Real cannot hold that: 7.6e-6 in float)
   Real relax_tol = Real(std::max(1e-10, 64.0 * double(std::numeric_limits<Real>::epsilon())));
   // Strength of a single-material scene's material (kernels/strength/module.hpp): the
@@ -505,12 +510,32 @@ struct State {
   Kokkos::View<int, MemSpace> expansion_any;  // set where a sweep's faces did that work
 };
 
+// What limited a time step: the CFL condition per axis, the unsplit remap's sum of the axes'
+// Courant numbers, the growth factor, dt_max, the end time; the driver's first step held at
+// time.dt_initial. dt_limit_name gives the run log's word for each.
+enum class DtLimit { Cfl, CourantSum, Growth, Max, End, Initial };
+inline const char* dt_limit_name(DtLimit l) {
+  switch (l) {
+    case DtLimit::Cfl:
+      return "cfl";
+    case DtLimit::CourantSum:
+      return "courant_sum";
+    case DtLimit::Growth:
+      return "growth";
+    case DtLimit::Max:
+      return "max";
+    case DtLimit::End:
+      return "end";
+    case DtLimit::Initial:
+      return "initial";
+  }
+  return "?";
+}
+
 struct TimeStep {
   Real dt = 0;
   std::array<int, 3> cell{{-1, -1, -1}};  // global index of the limiting cell
-  // "cfl" (per axis), "courant_sum" (the unsplit remap's sum over the axes), "growth", "max",
-  // "end"; the driver adds "initial" (the first step held at time.dt_initial)
-  std::string limit;
+  DtLimit limit = DtLimit::Cfl;
 };
 
 struct Totals {

@@ -414,7 +414,8 @@ struct FaceFluxes {
   static constexpr int d = D;
   Dev dev;
   Field3 rho, e, pre, vf, mf, ef;
-  int nmat, order, iface;
+  int nmat, order;
+  Interface iface;
   Real dx, dy, dz;
   // module carriers (hydro.hpp): the summed mass flux of the materials of each mask
   int nc;
@@ -437,14 +438,14 @@ struct FaceFluxes {
     auto normal = [&](int entry, Real* n) {
       const int m = mat_of(entry);
       n[0] = n[1] = n[2] = 0;
-      if (iface == 0) {
+      if (iface == Interface::Youngs) {
         Real st3[3][3][3];
         for (int c = 0; c < 3; ++c)
           for (int b = 0; b < 3; ++b)
             for (int q = 0; q < 3; ++q)
               st3[q][b][c] = mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
         plic::youngs_normal(st3, dx, dy, dz, n);
-      } else if (iface == 1) {
+      } else if (iface == Interface::Slic) {
         const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
                        mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);
         n[d] = g > 0 ? Real(-1) : g < 0 ? Real(1) : Real(0);

@@ -27,6 +27,7 @@
 #include "core/columns.hpp"
 #include "core/types.hpp"
 #include "eos/eos.hpp"
+#include "materials/layout_kind.hpp"
 #include "mesh/mesh.hpp"
 
 namespace mp::mat {
@@ -36,8 +37,6 @@ constexpr int kMaxMaterials = 16;
 // Most per-slot quantities a module may keep in the compact pool beside the layout's own (the
 // strength module keeps 7: its 6 deviator components and the plastic strain).
 constexpr int kMaxExtras = 8;
-
-enum class LayoutKind { Dense, Compact };
 
 // The EOS of each material, copied into every kernel that needs it.
 struct MaterialSet {

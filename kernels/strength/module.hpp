@@ -57,8 +57,8 @@
 #include <string>
 #include <vector>
 
-#include "io/hdf5_writer.hpp"
 #include "materials/layout.hpp"
+#include "mesh/field.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 #include "strength/flow_stress.hpp"

@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -49,6 +50,18 @@ class DeckNode {
   std::string get_enum(const std::string& key, const std::vector<std::string>& allowed) const;
   std::string get_enum(const std::string& key, const std::vector<std::string>& allowed,
                        const std::string& fallback) const;
+  // One of the names in `choices`, as its value (an enum class); the error lists the names.
+  template <class E>
+  E get_choice(const std::string& key, const std::vector<std::pair<std::string, E>>& choices,
+               E fallback) const {
+    if (!has(key)) return fallback;
+    std::vector<std::string> names;
+    for (const auto& c : choices) names.push_back(c.first);
+    const std::string v = get_enum(key, names);
+    for (const auto& c : choices)
+      if (c.first == v) return c.second;
+    return fallback;  // (get_enum refused any other name)
+  }
   std::array<double, 3> get_real3(const std::string& key, double lo, double hi) const;
   std::array<double, 3> get_real3(const std::string& key, double lo, double hi,
                                   std::array<double, 3> fallback) const;

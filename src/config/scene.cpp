@@ -1,5 +1,6 @@
 #include "config/scene.hpp"
 
+#include "config/options.hpp"
 #include "materials/library.hpp"
 #include "strength/library.hpp"
 
@@ -138,6 +139,10 @@ void read_strength(const DeckNode& n, MaterialSpec& spec) {
   StrengthSpec& st = spec.strength;
   st.model = n.get_enum(
       "model", {"elastic_plastic", "johnson_cook", "steinberg_guinan", "zerilli_armstrong"});
+  st.kind = st.model == "elastic_plastic"     ? strength::kConstantYield
+            : st.model == "johnson_cook"      ? strength::kJohnsonCook
+            : st.model == "zerilli_armstrong" ? strength::kZerilliArmstrong
+                                              : strength::kSteinbergGuinan;
   st.library = n.get_string("library", spec.library);
   const strength::StrengthData* data =
       st.library.empty() ? nullptr : strength::find_strength(st.library);
@@ -229,11 +234,16 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
       list.fail("expected a non-empty list of detonators");
     for (const DeckNode& d : list.items()) {
       DetonatorSpec ds;
-      ds.type = d.get_enum("type", {"point", "line", "plane"});
-      if (ds.type == "point") {
+      d.child("type");  // (required: a missing one is named)
+      ds.type = d.get_choice("type",
+                             Choices<DetonatorKind>{{"point", DetonatorKind::Point},
+                                                    {"line", DetonatorKind::Line},
+                                                    {"plane", DetonatorKind::Plane}},
+                             DetonatorKind::Point);
+      if (ds.type == DetonatorKind::Point) {
         d.expect_keys({"type", "at", "time"});
         ds.a = d.get_real3("at", -kHuge, kHuge);
-      } else if (ds.type == "line") {
+      } else if (ds.type == DetonatorKind::Line) {
         d.expect_keys({"type", "from", "to", "time"});
         ds.a = d.get_real3("from", -kHuge, kHuge);
         ds.b = d.get_real3("to", -kHuge, kHuge);
@@ -499,6 +509,24 @@ void read_regions(const DeckNode& root, Scene& s) {
   }
 }
 
+// A numerics key that applies to the other kind of scene (config/options.hpp,
+// numerics_scopes) is refused where the deck (or a --set) gives it.
+void check_numerics_scope(const DeckNode& root, const Scene& s) {
+  if (!root.has("numerics")) return;
+  const DeckNode n = root.child("numerics");
+  const bool multi = s.materials.size() > 1;
+  for (const NumericsScope& k : numerics_scopes()) {
+    if (!n.has(k.key)) continue;
+    if (k.applies == hydro::Applies::SingleMaterial && multi)
+      n.child(k.key).fail(std::string("applies to single-material scenes only (") + k.why +
+                          "); this scene has " + std::to_string(s.materials.size()) +
+                          " materials: remove the key");
+    if (k.applies == hydro::Applies::MultiMaterial && !multi)
+      n.child(k.key).fail(std::string("applies to multi-material scenes only (") + k.why +
+                          "); this scene has one material: remove the key");
+  }
+}
+
 }  // namespace
 
 std::map<std::string, std::string> resolved_numerics(const Scene& s) {
@@ -509,22 +537,22 @@ std::map<std::string, std::string> resolved_numerics(const Scene& s) {
     return std::string(b);
   };
   const NumericsSpec& n = s.numerics;
-  return {{"numerics.advection", n.advection},
-          {"numerics.remap", n.remap},
+  return {{"numerics.advection", name_of(n.advection)},
+          {"numerics.remap", name_of(n.remap)},
           {"numerics.viscosity.linear", real(n.q_linear)},
           {"numerics.viscosity.quadratic", real(n.q_quadratic)},
           {"numerics.viscosity.isotropic", real(n.q_isotropic)},
           {"numerics.heat_flux", real(n.heat_flux)},
-          {"numerics.geometry", n.geometry},
+          {"numerics.geometry", name_of(n.geometry)},
           {"numerics.free_expansion", real(n.free_expansion)},
           {"numerics.ke_fix", n.ke_fix ? "true" : "false"},
-          {"numerics.ke_fix_share", n.ke_fix_share},
+          {"numerics.ke_fix_share", name_of(n.ke_fix_share)},
           {"numerics.ke_fix_redo", n.ke_fix_redo ? "true" : "false"},
           {"numerics.samples", std::to_string(n.samples)},
-          {"numerics.layout", n.layout},
-          {"numerics.interface", n.interface},
+          {"numerics.layout", name_of(n.layout)},
+          {"numerics.interface", name_of(n.interface)},
           {"numerics.min_fraction", real(n.min_fraction)},
-          {"numerics.closure", n.closure},
+          {"numerics.closure", name_of(n.closure)},
           {"numerics.relaxation_iterations", std::to_string(n.relaxation_iterations)},
           {"numerics.void_density", real(n.void_density)},
           {"numerics.solid_floor", real(n.solid_floor)},
@@ -567,25 +595,25 @@ Scene read_scene(const Deck& deck) {
                    "samples", "layout", "interface", "min_fraction", "closure",
                    "relaxation_iterations", "solid_floor", "void_density", "heat_flux", "geometry",
                    "free_expansion"});
-    s.numerics.heat_flux = n.get_real("heat_flux", 0, 100, s.numerics.heat_flux);
-    s.numerics.free_expansion = n.get_real("free_expansion", 0, 0.99, s.numerics.free_expansion);
-    s.numerics.geometry = n.get_enum("geometry", {"midstep", "fixed"}, s.numerics.geometry);
-    s.numerics.closure = n.get_enum("closure", {"equal_strain", "relaxation"}, s.numerics.closure);
-    s.numerics.solid_floor = n.get_real("solid_floor", 0, 0.99, s.numerics.solid_floor);
-    s.numerics.void_density = n.get_real("void_density", 0, 1.0, s.numerics.void_density);
-    s.numerics.relaxation_iterations = static_cast<int>(
-        n.get_int("relaxation_iterations", 1, 1000, s.numerics.relaxation_iterations));
-    s.numerics.layout = n.get_enum("layout", {"compact", "dense"}, s.numerics.layout);
-    s.numerics.interface =
-        n.get_enum("interface", {"youngs", "slic", "none"}, s.numerics.interface);
-    s.numerics.min_fraction = n.get_real("min_fraction", 0, 1e-3, s.numerics.min_fraction);
-    s.numerics.samples = static_cast<int>(n.get_int("samples", 1, 16, s.numerics.samples));
-    s.numerics.remap = n.get_enum("remap", {"split", "unsplit"}, s.numerics.remap);
-    s.numerics.ke_fix = n.get_bool("ke_fix", s.numerics.ke_fix);
-    s.numerics.ke_fix_share =
-        n.get_enum("ke_fix_share", {"mass", "equal"}, s.numerics.ke_fix_share);
-    s.numerics.ke_fix_redo = n.get_bool("ke_fix_redo", s.numerics.ke_fix_redo);
-    s.numerics.advection = n.get_enum("advection", {"second", "first"}, s.numerics.advection);
+    NumericsSpec& x = s.numerics;
+    const auto choose = [&](const char* key, auto& v) { v = n.get_choice(key, choices(v), v); };
+    x.heat_flux = n.get_real("heat_flux", 0, 100, x.heat_flux);
+    x.free_expansion = n.get_real("free_expansion", 0, 0.99, x.free_expansion);
+    choose("geometry", x.geometry);
+    choose("closure", x.closure);
+    x.solid_floor = n.get_real("solid_floor", 0, 0.99, x.solid_floor);
+    x.void_density = n.get_real("void_density", 0, 1.0, x.void_density);
+    x.relaxation_iterations =
+        static_cast<int>(n.get_int("relaxation_iterations", 1, 1000, x.relaxation_iterations));
+    choose("layout", x.layout);
+    choose("interface", x.interface);
+    x.min_fraction = n.get_real("min_fraction", 0, 1e-3, x.min_fraction);
+    x.samples = static_cast<int>(n.get_int("samples", 1, 16, x.samples));
+    choose("remap", x.remap);
+    x.ke_fix = n.get_bool("ke_fix", x.ke_fix);
+    choose("ke_fix_share", x.ke_fix_share);
+    x.ke_fix_redo = n.get_bool("ke_fix_redo", x.ke_fix_redo);
+    choose("advection", x.advection);
     if (n.has("viscosity")) {
       const DeckNode q = n.child("viscosity");
       q.expect_keys({"linear", "quadratic", "isotropic"});
@@ -597,11 +625,12 @@ Scene read_scene(const Deck& deck) {
 
   read_materials(root, s);
   read_regions(root, s);
-  if (s.materials.size() > 1 && s.numerics.remap == "unsplit")
+  if (s.materials.size() > 1 && s.numerics.remap == hydro::Remap::Unsplit)
     root.child("numerics")
         .child("remap")
         .fail("the unsplit remap runs single-material scenes only; use 'split' with " +
               std::to_string(s.materials.size()) + " materials");
+  check_numerics_scope(root, s);
 
   s.output.basename = s.name;
   if (root.has("output")) {

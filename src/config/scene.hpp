@@ -6,13 +6,16 @@
 #include <vector>
 
 #include "config/deck.hpp"
+#include "hydro/numerics.hpp"
 #include "materials/geometry.hpp"
 #include "mesh/mesh.hpp"
+#include "strength/flow_stress.hpp"
 
 namespace mp {
 
 // Strength of a material (materials[].strength; kernels/strength/). model "" means none.
 struct StrengthSpec {
+  strength::FlowStressKind kind = strength::kNoStrength;  // the model, typed
   std::string model;         // "" | elastic_plastic | johnson_cook | steinberg_guinan |
                              // zerilli_armstrong
   std::string library;       // strength library entry (kernels/strength/library.hpp)
@@ -21,8 +24,9 @@ struct StrengthSpec {
 };
 
 // An explosive's burn (materials[].burn; kernels/burn/). on == false means none.
+enum class DetonatorKind { Point, Line, Plane };
 struct DetonatorSpec {
-  std::string type = "point";  // point (at) | line (from, to) | plane (at, normal)
+  DetonatorKind type = DetonatorKind::Point;  // point (at) | line (from, to) | plane (at, normal)
   std::array<double, 3> a{}, b{};
   double time = 0;  // firing time
 };
@@ -77,47 +81,19 @@ struct RegionSpec {
   int wave_axis = 0;
 };
 
-struct TimeSpec {
+// time.*: the step's controls (cfl, growth, dt_max) with the hydro's defaults, and the run's
+// span.
+struct TimeSpec : hydro::StepControl {
   double end = 0;
-  double cfl = 0.5;
   double dt_initial = 1e-4;
-  double dt_max = 1e30;
-  double growth = 1.1;
   long max_cycles = 1000000;
 };
 
-struct NumericsSpec {
-  std::string advection = "second";  // second | first
-  std::string remap = "split";       // split (alternating sweeps) | unsplit
-  double q_linear = 0.2;             // linear (Landshoff) artificial viscosity coefficient
-  double q_quadratic = 0.75;         // quadratic (von Neumann–Richtmyer) coefficient
-  // the isotropic part of the tensor viscosity, Q = q ((1 - b) S + b I): 0 the tensor (the
-  // default), 1 a scalar q added to the pressure (docs/numerics.md, "Tensor viscosity")
-  double q_isotropic = 0.0;
-  // Noh's artificial heat flux, its coefficient h (kernels/hydro/conduction.cpp); 0 off
-  double heat_flux = 16.0;
-  // the Lagrangian step's geometry: midstep (forces and work on the faces moved by dt/2; single-
-  // material scenes without strength; docs/numerics.md "Mid-step geometry") | fixed (the
-  // undeformed faces: first-order in dt u / r in converging flow, the cheaper cycle)
-  std::string geometry = "midstep";
-  // the free-expansion rule (kernels/hydro/point.hpp expansion_share; docs/numerics.md "Free
-  // expansion to the nodes"): the density ratio below which a face's gas entering a lighter
-  // cell keeps only its isentropically expanded energy, the rest the kinetic energy of the node
-  // pairs it pushes apart; 0 off. Single-material ideal-gas scenes on split sweeps, KE fix on.
-  double free_expansion = 0.7;
-  bool ke_fix = true;                 // return the kinetic energy the momentum remap dissipates
-  std::string ke_fix_share = "mass";  // multi-material: a node's loss to its cells by mass | equal
-  // single-material: redo the momentum remap with donor values at the nodes that made more
-  // kinetic energy than their cells can pay (hydro.hpp, ke_redo); false leaves it to the floor
-  bool ke_fix_redo = true;
-  int samples = 4;                   // sub-cell samples per axis for the initial volume fractions
-  std::string layout = "compact";    // per-material storage: compact | dense
-  std::string interface = "youngs";  // material fluxes: youngs (PLIC) | slic | none
-  double min_fraction = 1e-14;       // a material below this volume fraction leaves a cell
-  std::string closure = "equal_strain";  // mixed cells: equal_strain | relaxation
-  int relaxation_iterations = 20;        // most pressure-relaxation Newton updates per cycle
+// numerics.*: the hydro's typed numerics (kernels/hydro/numerics.hpp, their one set of
+// defaults) and what the set-up alone uses.
+struct NumericsSpec : hydro::Numerics {
+  int samples = 4;          // sub-cell samples per axis for the initial volume fractions
   double void_density = 0;  // g/cm^3: below it a material has no pressure, no sound (0: off)
-  double solid_floor = 0;   // mixed cells: least rho/rho0 of a Mie-Grueneisen material (0: none)
 };
 
 struct OutputSpec {

@@ -25,7 +25,6 @@ class CollectiveError : public RunError {
 };
 
 [[noreturn]] void throw_mpi_error(int code, const char* call, const char* file, int line);
-[[noreturn]] void throw_hdf5_error(const char* call, const char* file, int line);
 
 }  // namespace mp
 
@@ -33,9 +32,4 @@ class CollectiveError : public RunError {
   do {                                                                                   \
     const int mp_rc_ = (call);                                                           \
     if (mp_rc_ != MPI_SUCCESS) ::mp::throw_mpi_error(mp_rc_, #call, __FILE__, __LINE__); \
-  } while (0)
-
-#define HDF5_CHECK(call)                                               \
-  do {                                                                 \
-    if ((call) < 0) ::mp::throw_hdf5_error(#call, __FILE__, __LINE__); \
   } while (0)

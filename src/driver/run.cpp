@@ -122,12 +122,12 @@ double memory_estimate(const Mesh& mesh, const Scene& s) {
   double reals = 8 * ec + 15 * en;  // rho e p c q p_half pre/post_vol; nodes and face fluxes
   if (nmat == 1) reals += 6 * en;   // single-material mass and energy face fluxes
   // the modules' fields (kernels/strength/module.hpp, kernels/burn/module.hpp)
-  if (nmat == 1 && !s.materials[0].strength.model.empty())
+  if (nmat == 1 && s.materials[0].strength.kind != strength::kNoStrength)
     reals += 14 * ec + 3 * en;  // s, s_half (6 each), plastic strain, scratch; nodal forces
   if (nmat == 1 && s.materials[0].burn.on) reals += 3 * ec;  // F, lighting time, scratch
   double ints = 0;
   if (nmat > 1) {
-    if (s.numerics.layout == "dense") {
+    if (s.numerics.layout == mat::LayoutKind::Dense) {
       reals += nmat * (5 * ec + 3 * en);
     } else {
       ints += 2 * 3 * ec;

@@ -6,6 +6,7 @@
 
 #include "config/scene.hpp"
 #include "hydro/hydro.hpp"
+#include "io/hdf5_writer.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
 

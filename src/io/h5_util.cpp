@@ -7,8 +7,31 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 
 namespace mp {
+
+namespace {
+// Keeps the most specific entry of the HDF5 error stack (where the error was first detected).
+herr_t first_hdf5_error(unsigned n, const H5E_error2_t* err, void* data) {
+  if (n == 0 && err != nullptr) {
+    auto* out = static_cast<std::string*>(data);
+    *out = std::string(err->func_name ? err->func_name : "?") + ": " +
+           (err->desc ? err->desc : "no description");
+  }
+  return 0;
+}
+}  // namespace
+
+void throw_hdf5_error(const char* call, const char* file, int line) {
+  std::string detail;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, first_hdf5_error, &detail);
+  H5Eclear2(H5E_DEFAULT);
+  std::ostringstream os;
+  os << call << " failed at " << file << ":" << line;
+  if (!detail.empty()) os << " (" << detail << ")";
+  throw RunError(os.str());
+}
 
 void write_text_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";

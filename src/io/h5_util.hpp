@@ -13,6 +13,11 @@
 #include "mesh/mesh.hpp"
 
 namespace mp {
+
+// Throws RunError naming the HDF5 call (HDF5_CHECK, below), where it failed and the HDF5 error
+// stack's first entry.
+[[noreturn]] void throw_hdf5_error(const char* call, const char* file, int line);
+
 // Writes `text` to <path>.tmp, flushes it to the disk, and renames it to `path`; on failure
 // removes the temporary file and throws RunError naming the file and the system's reason
 // ("No space left on device").
@@ -130,3 +135,8 @@ void on_all(MPI_Comm comm, F&& work) {
 void rename_or_throw(const std::string& from, const std::string& to);
 
 }  // namespace mp::h5
+
+#define HDF5_CHECK(call)                                               \
+  do {                                                                 \
+    if ((call) < 0) ::mp::throw_hdf5_error(#call, __FILE__, __LINE__); \
+  } while (0)

@@ -14,15 +14,10 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "mesh/field.hpp"
 #include "mesh/mesh.hpp"
 
 namespace mp {
-
-struct OutputField {
-  std::string name;  // dataset name, also the XDMF attribute name; must not contain '/'
-  Centering centering;
-  Field3 view;  // indexed (i, j, k), ghosts included, as made by Mesh::new_field
-};
 
 class Hdf5Writer {
  public:

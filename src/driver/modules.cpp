@@ -1,0 +1,214 @@
+// The scene's physics as the kernels take it (modules.hpp), and the run log's module lines.
+#include "driver/modules.hpp"
+
+#include <sstream>
+
+#include "config/options.hpp"
+#include "driver/simulation.hpp"
+#include "materials/library.hpp"
+#include "strength/library.hpp"
+
+namespace mp {
+
+eos::Eos material_eos(const MaterialSpec& m, double void_density) {
+  materials::MaterialData d;
+  d.name = m.name;
+  d.eos = m.eos;
+  d.rho0 = Real(m.rho0);
+  for (const auto& [k, v] : m.params) d.params[k] = Real(v);
+  eos::Eos eos = materials::make_eos(d);
+  if (m.has_p_min) eos.p_min = Real(m.p_min);
+  eos.rho_void = Real(void_density);
+  return eos;
+}
+
+std::vector<eos::Eos> material_eoses(const Scene& s) {
+  std::vector<eos::Eos> eos;
+  for (const auto& m : s.materials) eos.push_back(material_eos(m, s.numerics.void_density));
+  return eos;
+}
+
+strength::FlowStress material_strength(const MaterialSpec& m) {
+  const StrengthSpec& st = m.strength;
+  strength::FlowStress f;
+  if (st.kind == strength::kNoStrength) return f;
+  const strength::StrengthData* data =
+      st.library.empty() ? nullptr : strength::find_strength(st.library);
+  if (st.kind == strength::kConstantYield) {
+    f.kind = strength::kConstantYield;
+    f.constant = {Real(st.shear_modulus > 0 ? st.shear_modulus : double(data->G0)), Real(st.yield)};
+    return f;
+  }
+  // a deck's shear modulus replaces the library's (and stands in where it cites none)
+  strength::StrengthData d = *data;
+  if (st.shear_modulus > 0) d.G0 = d.jc.G0 = d.sg.G0 = d.za.G0 = Real(st.shear_modulus);
+  return strength::make_flow_stress(d, strength::FlowStressKind(st.kind));
+}
+
+burn::BurnSetup material_burn(const MaterialSpec& m) {
+  burn::BurnSetup b;
+  const BurnSpec& bs = m.burn;
+  if (!bs.on) return b;
+  b.on = true;
+  b.d_cj = Real(bs.detonation_speed);
+  b.p_cj = Real(bs.cj_pressure);
+  b.rho0 = Real(m.rho0);
+  b.ramp_cells = Real(bs.ramp_cells);
+  b.programmed = bs.programmed;
+  b.volume_burn = bs.volume_burn;
+  if (!bs.unreacted.empty()) {
+    // the deck reader checked the entry (a mie_gruneisen library material)
+    b.mixed = true;
+    b.unreacted = materials::make_eos(*materials::find_material(bs.unreacted));
+    b.e0 = Real(bs.unreacted_e0);
+  }
+  for (const DetonatorSpec& d : bs.detonators) {
+    burn::Detonator det;
+    det.kind = d.type == DetonatorKind::Point  ? burn::Detonator::Kind::Point
+               : d.type == DetonatorKind::Line ? burn::Detonator::Kind::Line
+                                               : burn::Detonator::Kind::Plane;
+    det.a = d.a;
+    det.b = d.b;
+    det.t0 = d.time;
+    b.detonators.push_back(det);
+  }
+  return b;
+}
+
+hydro::Options hydro_options(const Scene& s) {
+  hydro::Options opt(s.numerics, s.time);
+  if (s.materials.size() == 1) {
+    opt.strength = material_strength(s.materials[0]);
+    opt.strength_rho0 = Real(s.materials[0].rho0 > 0 ? s.materials[0].rho0 : 1.0);
+    opt.burn = material_burn(s.materials[0]);
+  } else {
+    // per material; the scene reader allows one explosive
+    opt.material_strength.n = int(s.materials.size());
+    for (std::size_t m = 0; m < s.materials.size(); ++m) {
+      const MaterialSpec& ms = s.materials[m];
+      opt.material_names.push_back(ms.name);
+      opt.material_strength.f[m] = material_strength(ms);
+      opt.material_strength.rho0[m] = Real(ms.rho0 > 0 ? ms.rho0 : 1.0);
+      if (ms.burn.on) {
+        opt.burn = material_burn(ms);
+        opt.burn.material = int(m);
+      }
+    }
+  }
+  return opt;
+}
+
+std::vector<std::string> Simulation::modules() const {
+  std::vector<std::string> m;
+  m.push_back("hydro: staggered Lagrange (predictor-corrector) + remap, " +
+              std::string(scene_.numerics.advection == hydro::Advection::First ? "first-order donor cell"
+                                                               : "second-order van Leer") +
+              " advection, " + name_of(scene_.numerics.remap) + " remap, KE fix " +
+              (!scene_.numerics.ke_fix ? std::string("off")
+               : scene_.materials.size() < 2
+                   ? std::string(scene_.numerics.ke_fix_redo
+                                     ? "on"
+                                     : "on (no donor-value redo, numerics.ke_fix_redo: false)")
+               : scene_.numerics.ke_fix_share == hydro::KeFixShare::Mass
+                   ? std::string("on (a node's loss shared by its cells' mass)")
+                   : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")) +
+              // Noh's heat flux (kernels/hydro/conduction.cpp): single-material scenes
+              (scene_.numerics.heat_flux > 0 && scene_.materials.size() < 2
+                   ? ", heat flux h = " +
+                         [&] {
+                           std::ostringstream os;
+                           os << scene_.numerics.heat_flux;
+                           return os.str();
+                         }() +
+                         " in converging shocks"
+                   : std::string()) +
+              // the Lagrangian step's geometry, as the hydro decided it (single material, no
+              // strength)
+              (hydro_->mid_geometry() ? ", mid-step geometry" : ", fixed geometry") +
+              // the free-expansion rule, where the hydro allocated it
+              (hydro_->free_expansion_acts() ? [&] {
+                std::ostringstream os;
+                os << ", free expansion to the nodes below density ratio "
+                   << scene_.numerics.free_expansion;
+                return os.str();
+              }()
+                                             : std::string()));
+  if (scene_.numerics.void_density > 0) {
+    std::ostringstream os;
+    os << "void: a material below " << scene_.numerics.void_density
+       << " g/cm3 has no pressure and no sound speed (numerics.void_density)";
+    m.push_back(os.str());
+  }
+  for (const MaterialSpec& mat : scene_.materials) {
+    std::string eos = "eos: " + mat.eos + " (" + mat.name;
+    if (!mat.library.empty()) eos += ", library '" + mat.library + "'";
+    for (const auto& [k, v] : mat.params) {
+      std::ostringstream os;
+      os << ", " << k << "=" << v;
+      eos += os.str();
+    }
+    if (mat.has_p_min) {
+      std::ostringstream os;
+      os << "; tension cutoff p_min=" << mat.p_min;
+      eos += os.str();
+    }
+    m.push_back(eos + ")");
+    if (mat.strength.kind != strength::kNoStrength) {
+      std::ostringstream os;
+      os << "strength: " << mat.strength.model << " (" << mat.name;
+      if (!mat.strength.library.empty() && mat.strength.kind != strength::kConstantYield)
+        os << ", library '" << mat.strength.library << "'";
+      const strength::FlowStress f = material_strength(mat);
+      if (f.kind == strength::kConstantYield)
+        os << ", G=" << f.constant.G0 << " Mbar, Y=" << f.constant.Y0 << " Mbar";
+      os << "; Jaumann rate, radial return; fields ";
+      if (scene_.materials.size() == 1)
+        os << "stress_xx..zx, plastic_strain)";
+      else  // its own stress set (kernels/strength/module.hpp, "Multi-material scenes")
+        os << "stress_xx_" << mat.name << "..zx_" << mat.name << ", plastic_strain_" << mat.name
+           << ")";
+      m.push_back(os.str());
+    }
+    if (mat.burn.on) {
+      std::ostringstream os;
+      os << "burn: " << (mat.burn.programmed ? "programmed" : "")
+         << (mat.burn.programmed && mat.burn.volume_burn ? " + " : "")
+         << (mat.burn.volume_burn ? "CJ volume" : "") << " (" << mat.name
+         << ", D=" << mat.burn.detonation_speed << " cm/us, p_cj=" << mat.burn.cj_pressure
+         << " Mbar, " << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
+         << " cells; "
+         << (mat.burn.unreacted.empty()
+                 ? std::string("p = F P_products")
+                 : "p = (1-F) P_unreacted(rho, e-e0) + F P_products, unreacted '" +
+                       mat.burn.unreacted + "'")
+         << "; Huygens lighting times; fields burn_fraction, lighting_time)";
+      m.push_back(os.str());
+    }
+  }
+  if (scene_.materials.size() == 1) {
+    m.push_back("materials: single material (no mixed cells, no interface reconstruction)");
+  } else {
+    const double asked = scene_.numerics.min_fraction;
+    const double used = hydro::effective_min_fraction(asked);
+    std::ostringstream os;
+    os << "materials: " << scene_.materials.size() << " materials, "
+       << name_of(scene_.numerics.layout) << " layout, "
+       << (scene_.numerics.closure == hydro::Closure::Relaxation
+               ? "equal-strain + pressure-relaxation (at most " +
+                     std::to_string(scene_.numerics.relaxation_iterations) +
+                     " iterations/cycle) mixed cells"
+               : std::string("equal-strain mixed cells"))
+       << ", interface reconstruction "
+       << (scene_.numerics.interface == hydro::Interface::Youngs
+               ? "Youngs PLIC (onion skin)"
+               : name_of(scene_.numerics.interface))
+       << ", min fraction " << used;
+    if (used > asked)
+      os << " (the deck's " << asked << " raised to 4 ulps of 1 in this build's "
+         << (sizeof(Real) == 4 ? "float" : "double") << " fields)";
+    m.push_back(os.str());
+  }
+  return m;
+}
+
+}  // namespace mp
