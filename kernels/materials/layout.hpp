@@ -234,7 +234,7 @@ class MaterialState {
                  const std::array<int, 3>& hi, Op op) const;
   // for_cells' range over the mixed list alone (compact layout; name + "[mixed]", no launch
   // when there are no mixed cells), for a kernel that runs its pure cells itself (as k-columns
-  // over the cell arrays, kernels/hydro/multimat.cpp).
+  // over the cell arrays, kernels/hydro/mixed_lagrange.cpp and mixed_ke_fix.cpp).
   template <class Op>
   void for_mixed(const std::string& name, const std::array<int, 3>& lo,
                  const std::array<int, 3>& hi, Op op) const;
