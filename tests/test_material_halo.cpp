@@ -1,10 +1,10 @@
-// The material halo (MaterialState::exchange, kernels/materials/layout.cpp) in both layouts:
+// The material halo (MaterialState::exchange, kernels/materials/halo.cpp) in both layouts:
 // after one exchange every ghost cell's per-material content (alpha, rho, e of each material)
 // and its cell averages equal, bit for bit, those of the owned cell it stands for: the mirror
 // image across a reflective wall, the wall cell itself at an outflow wall, the periodic image,
 // or the neighbour rank's cell; faces, edges and corners, both ghost layers.
 //
-// The expected values come from the definitions, not from layout.cpp: owned cells hold a
+// The expected values come from the definitions, not from halo.cpp: owned cells hold a
 // content that is a function of the global cell index (pure cells of each of three materials,
 // and mixed cells of two and three); ghosts start as a sentinel material with negative density
 // and energy, so a ghost the exchange missed fails. Each axis maps a ghost's global index to its

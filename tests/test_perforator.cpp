@@ -183,7 +183,7 @@ TEST(Perforator, EveryMaterialsMassWithSlic) {
 // explosive here (steel -3.1e-7 g, comp_b +3.1e-7 g: 5.6e-10 of the scene's mass): a steel
 // sliver below 1e-6 of a cell whose energy went negative by cancellation left the cell and its
 // mass went to the largest material. Such a sliver now stays at zero energy, the largest
-// material paying the deficit (kernels/hydro/multimat.cpp, RemapSource).
+// material paying the deficit (kernels/hydro/mixed_remap_cells.cpp, RemapSource).
 TEST(Perforator, EveryMaterialsMassWithYoungs) {
   expect_each_mass_conserved("youngs");
 }

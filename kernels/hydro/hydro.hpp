@@ -484,7 +484,7 @@ struct State {
   Field3 cjump;
   Kokkos::View<int, MemSpace> converging;
   // the energy the KE fix's floor left uncharged on this rank's owned cells since the start
-  // (remap.cpp ke_fix_cell, multimat.cpp MixedKeFix / PureKeFix; reported by totals())
+  // (remap.cpp ke_fix_cell, mixed_ke_fix.cpp MixedKeFix / PureKeFix; reported by totals())
   Kokkos::View<double, MemSpace> ke_unpaid;
   // raised by remap::momentum where a node made kinetic energy its cells cannot pay (ke_redo)
   Kokkos::View<int, MemSpace> ke_redo;
@@ -649,7 +649,8 @@ class Hydro {
   // (the modules adjust p and c between the two).
   bool plain() const { return !mm_ && !strength_ && !burn_; }
   void viscosity_with(bool with_eos);
-  // Multi-material pieces (multimat.cpp).
+  // Multi-material pieces (mixed_lagrange.cpp, mixed_remap_faces.cpp, mixed_remap_cells.cpp,
+  // mixed_ke_fix.cpp).
   void mm_equation_of_state() const;
   // (`f`: the half step's face factors, dt/2 times a quarter of each axis's face area)
   void mm_predictor(Real vol, const std::array<Real, 3>& f);

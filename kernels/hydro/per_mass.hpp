@@ -55,7 +55,7 @@ KOKKOS_INLINE_FUNCTION Real per_mass_flux(const PerMassFace& f, const Field3& ol
 // carriers; hydro.hpp). (N is a template parameter so that the sums stay in registers: with a
 // run-time count the burn fraction's single field took twice as long.) A split sweep may name
 // its axis at compile time (Axis 0, 1 or 2; ax, ay, az then unread): the index steps along it
-// are constants, as in the hydro's sweep kernels (remap.cpp), with the same sums.
+// are constants, as in the hydro's sweep kernels (remap_sweep.cpp), with the same sums.
 template <int N, int Axis = -1, class Olds>
 KOKKOS_INLINE_FUNCTION void per_mass_update(int i, int j, int k, Real ax, Real ay, Real az,
                                             const Field3& mfx, const Field3& mfy, const Field3& mfz,

@@ -110,7 +110,7 @@ std::vector<std::string> earlier_outputs(const std::string& dir) {
 }
 
 // Memory the run's arrays take on each rank (bytes): the hydro's cell and node fields and the
-// per-material state, over each block with its ghost layers (kernels/hydro/lagrange.cpp and
+// per-material state, over each block with its ghost layers (kernels/hydro/hydro.cpp and
 // kernels/materials/layout.cpp allocate them). Compact pools are sized for 10 % mixed cells.
 double memory_estimate(const Mesh& mesh, const Scene& s) {
   double ec = 1, en = 1;
