@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <string>
 
+#include "config/options.hpp"
 #include "support.hpp"
 
 using namespace mp;
@@ -126,7 +127,8 @@ void compare_rank_counts(const Scene& scene) {
   std::printf(
       "%s (%s layout): %ld cycles, %zu cells, %ld mixed material entries at the end%s; 1 vs 2 "
       "and 1 vs 4 ranks over %zu fields: %ld values differ\n",
-      scene.name.c_str(), scene.numerics.layout.c_str(), one.cycles, one.rho.size(), mixed, plastic,
+      scene.name.c_str(), mp::name_of(scene.numerics.layout).c_str(), one.cycles, one.rho.size(),
+      mixed, plastic,
       5 + one.fractions.size() + one.mat_state.size() + one.strength.size() +
           (one.burn.empty() ? 0 : 1),
       differ);

@@ -139,11 +139,11 @@ void step_alone_conserves_total_energy(const std::string& geometry) {
       "-> %.17e\n"
       "  total %.17e -> %.17e, change %.3e (relative %.3e, %.2f eps of the total)\n"
       "  bound %.3e: eps x (2 x %.3e + 8 x %.3e + 16 x %.3e); work done %.3e\n",
-      geometry.c_str(), ts.dt, ts.limit.c_str(), double(before.internal), double(after.internal),
-      double(before.kinetic), double(after.kinetic), double(e0), double(e1), change,
-      change / double(e0), std::abs(change) / double(e0) / eps, bound, double(before.abs_internal),
-      double(std::max(before.twice_kinetic, after.twice_kinetic)), double(work_scale),
-      double(after.kinetic - before.kinetic));
+      geometry.c_str(), ts.dt, mp::hydro::dt_limit_name(ts.limit), double(before.internal),
+      double(after.internal), double(before.kinetic), double(after.kinetic), double(e0), double(e1),
+      change, change / double(e0), std::abs(change) / double(e0) / eps, bound,
+      double(before.abs_internal), double(std::max(before.twice_kinetic, after.twice_kinetic)),
+      double(work_scale), double(after.kinetic - before.kinetic));
   // the step did move energy between the cells and the nodes (far above the bound), else the
   // check would be empty
   EXPECT_GT(double(after.kinetic - before.kinetic), 100 * bound);

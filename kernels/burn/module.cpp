@@ -192,12 +192,10 @@ void Burn::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& m
   hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
 }
 
-std::vector<HaloField> Burn::halo_fields() const {
-  return {{f_, Centering::Cell, {1, 1, 1}}};
-}
-
-std::vector<OutputField> Burn::output_fields() const {
-  return {{"burn_fraction", Centering::Cell, f_}, {"lighting_time", Centering::Cell, t_light_}};
+std::vector<FieldSpec> Burn::fields(unsigned /*use*/) const {
+  const auto C = Centering::Cell;
+  return {{"burn_fraction", C, f_, kDump | kCheckpoint | kHalo, "burn_fraction", {{1, 1, 1}}, ""},
+          {"lighting_time", C, t_light_, kDump, "lighting_time", {{1, 1, 1}}, "us"}};
 }
 
 }  // namespace mp::burn

@@ -27,6 +27,7 @@
 
 #include "burn/burn.hpp"
 #include "burn/lighting.hpp"
+#include "hydro/module.hpp"
 #include "materials/layout.hpp"
 #include "mesh/field.hpp"
 #include "mesh/halo.hpp"
@@ -48,7 +49,7 @@ struct BurnSetup {
   Real e0 = 0;  // unreacted energy origin, cm^2/us^2 (E0 / rho0 of the products)
 };
 
-class Burn {
+class Burn : public hydro::Module {
  public:
   Burn(const Mesh& mesh, const BurnSetup& setup);
   // A multi-material scene: call light() once the materials are in place.
@@ -65,14 +66,18 @@ class Burn {
   void update(const Field3& rho, double dt);
   void remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
              const Field3& rho, const Field3& pre, int order);
-  std::vector<HaloField> halo_fields() const;
-  std::vector<OutputField> output_fields() const;
+  // The module seam (hydro/module.hpp). Fields: the burn fraction (dumped, checkpointed, in the
+  // cell halo) and the lighting times (dumped; rebuilt from the deck and the materials).
+  const char* name() const override { return "burn"; }
+  std::vector<FieldSpec> fields(unsigned use) const override;
+  // Lighting times from the explosive's volume fraction (multi-material scenes).
+  void materials_placed() override { light(); }
 
   const Field3& fraction() const { return f_; }
   const Field3& lighting_time() const { return t_light_; }
   double time() const { return time_; }
   // The clock a restart resumes from (the run's time; the module's starts at 0 with the run).
-  void set_time(double t) { time_ = t; }
+  void set_time(double t) override { time_ = t; }
   const BurnParams& params() const { return params_; }
   // The closure with the unreacted solid's EOS (BurnSetup::mixed), its EOS and energy origin.
   bool mixed() const { return mixed_; }

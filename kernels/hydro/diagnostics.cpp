@@ -420,10 +420,22 @@ std::vector<OutputField> Hydro::output_fields() const {
       {"pressure", Centering::Cell, s_.p},   {"sound_speed", Centering::Cell, s_.c},
       {"viscosity", Centering::Cell, s_.q},  {"velocity_x", Centering::Node, s_.u},
       {"velocity_y", Centering::Node, s_.v}, {"velocity_z", Centering::Node, s_.w}};
-  if (strength_)
-    for (const OutputField& o : strength_->output_fields()) f.push_back(o);
-  if (burn_)
-    for (const OutputField& o : burn_->output_fields()) f.push_back(o);
+  for (const OutputField& o : dump_fields(module_fields(kDump))) f.push_back(o);
+  return f;
+}
+
+std::vector<Module*> Hydro::modules() const {
+  std::vector<Module*> m;
+  if (strength_) m.push_back(strength_.get());
+  if (burn_) m.push_back(burn_.get());
+  return m;
+}
+
+std::vector<FieldSpec> Hydro::module_fields(unsigned use) const {
+  std::vector<FieldSpec> f;
+  for (const Module* m : modules())
+    for (const FieldSpec& s : m->fields(use))
+      if (s.use & use) f.push_back(s);
   return f;
 }
 

@@ -114,13 +114,10 @@ void Hydro::exchange_cells() {
   std::vector<HaloField> f;
   if (mm_) {
     mm_->exchange();
-    if (strength_ && strength_->pooled()) strength_->exchange_compact(halo_);
+    for (Module* m : modules()) m->exchange_materials(halo_);
   } else
     f = {{s_.rho, Centering::Cell, {1, 1, 1}}, {s_.e, Centering::Cell, {1, 1, 1}}};
-  if (strength_)
-    for (const HaloField& h : strength_->halo_fields()) f.push_back(h);
-  if (burn_)
-    for (const HaloField& h : burn_->halo_fields()) f.push_back(h);
+  for (const HaloField& h : halo_fields(module_fields(kHalo))) f.push_back(h);
   if (!f.empty()) halo_.exchange(f);
 }
 

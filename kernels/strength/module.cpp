@@ -68,48 +68,26 @@ void Strength::allocate() {
   scratch_ = mesh.new_field("strength_remap_scratch", Centering::Cell);
 }
 
-std::vector<HaloField> Strength::halo_fields() const {
-  const auto C = Centering::Cell;
-  std::vector<HaloField> h;
-  if (pooled_) return h;  // (exchange_compact)
-  for (const StressSet& st : sets_)
+std::vector<FieldSpec> Strength::fields(unsigned use) const {
+  const unsigned uses = kDump | kCheckpoint | (pooled_ ? 0u : unsigned(kHalo));
+  std::vector<FieldSpec> f;
+  if (!(use & uses)) return f;  // (a pooled set is gathered only for the dumps and checkpoints)
+  const char* comp[7] = {"stress_xx", "stress_yy", "stress_zz",     "stress_xy",
+                         "stress_yz", "stress_zx", "plastic_strain"};
+  for (int q = 0; q < sets(); ++q) {
+    const StressSet st = gathered(q);
+    const std::string name = st.material < 0                    ? ""
+                             : st.material < int(names_.size()) ? "_" + names_[st.material]
+                                                                : "_" + std::to_string(st.material);
+    const std::string key = st.material < 0 ? "" : "_" + std::to_string(st.material);
     for (int x = 0; x < 7; ++x)
-      h.push_back({x < 6 ? st.s[x] : st.eps_p, C, {kParity[x][0], kParity[x][1], kParity[x][2]}});
-  return h;
-}
-
-namespace {
-
-std::vector<OutputField> set_fields(const StressSet& st, const std::string& suffix) {
-  const auto C = Centering::Cell;
-  return {{"stress_xx" + suffix, C, st.s[0]},      {"stress_yy" + suffix, C, st.s[1]},
-          {"stress_zz" + suffix, C, st.s[2]},      {"stress_xy" + suffix, C, st.s[3]},
-          {"stress_yz" + suffix, C, st.s[4]},      {"stress_zx" + suffix, C, st.s[5]},
-          {"plastic_strain" + suffix, C, st.eps_p}};
-}
-
-}  // namespace
-
-std::vector<OutputField> Strength::output_fields() const {
-  std::vector<OutputField> f;
-  for (int q = 0; q < sets(); ++q) {
-    const StressSet st = gathered(q);
-    const std::string suffix = st.material < 0 ? ""
-                               : st.material < int(names_.size())
-                                   ? "_" + names_[st.material]
-                                   : "_" + std::to_string(st.material);
-    const auto one = set_fields(st, suffix);
-    f.insert(f.end(), one.begin(), one.end());
-  }
-  return f;
-}
-
-std::vector<OutputField> Strength::state_fields() const {
-  std::vector<OutputField> f;
-  for (int q = 0; q < sets(); ++q) {
-    const StressSet st = gathered(q);
-    const auto one = set_fields(st, st.material < 0 ? "" : "_" + std::to_string(st.material));
-    f.insert(f.end(), one.begin(), one.end());
+      f.push_back({comp[x] + name,
+                   Centering::Cell,
+                   x < 6 ? st.s[x] : st.eps_p,
+                   uses,
+                   comp[x] + key,
+                   {{kParity[x][0], kParity[x][1], kParity[x][2]}},
+                   x < 6 ? "Mbar" : ""});
   }
   return f;
 }
@@ -128,7 +106,7 @@ StressSet Strength::gathered(int q) const {
   return st;
 }
 
-void Strength::restore_state(const std::vector<OutputField>& state) {
+void Strength::restore(const std::vector<FieldSpec>& state) {
   if (!pooled_) return;
   std::vector<Target> t;
   for (int q = 0; q < sets(); ++q)

@@ -57,6 +57,7 @@
 #include <string>
 #include <vector>
 
+#include "hydro/module.hpp"
 #include "materials/layout.hpp"
 #include "mesh/field.hpp"
 #include "mesh/halo.hpp"
@@ -88,7 +89,7 @@ struct StressSet {
   Field3 eps_p;
 };
 
-class Strength {
+class Strength : public hydro::Module {
  public:
   // Pooled sets: component x (0-5 deviator, 6 plastic strain) of set q, as a cell field.
   struct Target {
@@ -126,25 +127,28 @@ class Strength {
   void remap_compact(const std::array<bool, 3>& axes, const std::vector<Field3>& flux,
                      const std::vector<Field3>& rho, const Field3& pre, int order);
   // True when the sets live in the compact pool (remap_compact and exchange_compact, not
-  // remap and halo_fields).
+  // remap and the cell halo).
   bool pooled() const { return pooled_; }
-  // The halo fields of the carried quantities (exchanged with the cell fields; none when the
-  // sets are pooled).
-  std::vector<HaloField> halo_fields() const;
   // Pooled sets: the ghosts' values of every set, after the material exchange.
   void exchange_compact(Halo& halo);
   // Set q's deviator and plastic strain as cell fields (0 where its material is absent): the
   // set's own fields (dense), or new fields gathered from the pool (compact).
   StressSet gathered(int q) const;
-  // After a restart read state_fields(): pooled sets take the owned cells' values of the
-  // fields it returned (cells that hold the set's material).
-  void restore_state(const std::vector<OutputField>& state);
-  // The dumps' fields: a single-material scene's stress_xx..zx and plastic_strain; a
-  // multi-material scene's the same with each material's name appended (stress_xx_copper).
-  std::vector<OutputField> output_fields() const;
-  // The state a checkpoint keeps: the same fields, a multi-material scene's suffixed by the
-  // material id (as the checkpoint's per-material fields are).
-  std::vector<OutputField> state_fields() const;
+
+  // The module seam (hydro/module.hpp). Fields: each set's deviator stress_xx..zx and plastic
+  // strain, dumped as a single-material scene's stress_xx..zx, plastic_strain, or a multi-
+  // material scene's with the material's name appended (stress_xx_copper), checkpointed with
+  // the material id appended (as the checkpoint's per-material fields are), in the cell halo
+  // unless pooled.
+  const char* name() const override { return "strength"; }
+  std::vector<FieldSpec> fields(unsigned use) const override;
+  // Pooled sets take the owned cells' values of the restored fields (cells that hold the set's
+  // material).
+  void restore(const std::vector<FieldSpec>& state) override;
+  // Pooled sets: their ghosts (exchange_compact).
+  void exchange_materials(Halo& halo) override {
+    if (pooled_) exchange_compact(halo);
+  }
 
   // Nodal forces of the half-step deviator (owned nodes), read by the acceleration.
   const std::array<Field3, 3>& force() const { return force_; }

@@ -31,18 +31,9 @@ std::vector<OutputField> Simulation::checkpoint_fields() const {
       f.push_back({"rho_" + n, Centering::Cell, mm->material_field(m, 1)});
       f.push_back({"e_" + n, Centering::Cell, mm->material_field(m, 2)});
     }
-  for (const OutputField& o : module_state()) f.push_back(o);
-  return f;
-}
-
-// What the strength and burn modules carry from cycle to cycle: the stress deviator and plastic
-// strain, the burn fraction (their other fields are derived, or static like lighting times).
-std::vector<OutputField> Simulation::module_state() const {
-  std::vector<OutputField> f;
-  if (const strength::Strength* st = hydro_->strength())
-    for (const OutputField& o : st->state_fields()) f.push_back(o);
-  if (const burn::Burn* b = hydro_->burn())
-    f.push_back({"burn_fraction", Centering::Cell, b->fraction()});
+  // what the modules carry from cycle to cycle (their registered kCheckpoint fields)
+  for (const OutputField& o : mp::checkpoint_fields(hydro_->module_fields(kCheckpoint)))
+    f.push_back(o);
   return f;
 }
 
@@ -263,8 +254,8 @@ void Simulation::restart(const std::string& path) {
       per.push_back(mesh_->new_field(std::string("restart_") + q, Centering::Cell));
       fields.push_back({q + std::to_string(m), Centering::Cell, per.back()});
     }
-  const std::vector<OutputField> state = module_state();
-  for (const OutputField& o : state) fields.push_back(o);
+  const std::vector<FieldSpec> state = hydro_->module_fields(kCheckpoint);
+  for (const OutputField& o : mp::checkpoint_fields(state)) fields.push_back(o);
   read_checkpoint_fields(*mesh_, path, fields);
   if (mm) {
     const int ex = mesh_->extent(Centering::Cell, 0), ey = mesh_->extent(Centering::Cell, 1),
@@ -290,8 +281,10 @@ void Simulation::restart(const std::string& path) {
     }
     mm->assign("restart::assign", src);
     // stress sets kept in the compact pool take their values once the pool holds the materials
-    if (strength::Strength* st = hydro_->strength()) st->restore_state(state);
-    if (burn::Burn* b = hydro_->burn()) b->light();
+    for (hydro::Module* m : hydro_->modules()) {
+      m->restore(state);
+      m->materials_placed();
+    }
     auto rho = s.rho, e = s.e;
     Kokkos::parallel_for(
         "restart::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -303,7 +296,7 @@ void Simulation::restart(const std::string& path) {
 
   try {
     t_ = meta.at("time").get<double>();
-    if (burn::Burn* b = hydro_->burn()) b->set_time(t_);
+    for (hydro::Module* m : hydro_->modules()) m->set_time(t_);
     cycle_ = meta.at("cycle").get<long>();
     dt_old_ = Real(meta.at("dt_old").get<double>());
     next_dump_ = meta.at("next_dump").get<double>();

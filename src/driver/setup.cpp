@@ -273,7 +273,7 @@ void Simulation::initialize() {
         {ng, ng, ng},
         {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)}};
     mm->assign("init::materials", src);
-    if (burn::Burn* b = hydro_->burn()) b->light();  // through the explosive just painted
+    for (hydro::Module* m : hydro_->modules()) m->materials_placed();  // (lighting times)
   }
   if (!mm)
     Kokkos::parallel_for(

@@ -74,9 +74,9 @@ class Simulation {
   RunResult run();
   // Writes a checkpoint of the current state now (collective); returns its path.
   std::string write_checkpoint_now();
-  // The fields a checkpoint holds (cell rho, e; node u, v, w; per material alpha, rho, e).
+  // The fields a checkpoint holds (cell rho, e; node u, v, w; per material alpha, rho, e; the
+  // modules' registered state).
   std::vector<OutputField> checkpoint_fields() const;
-  std::vector<OutputField> module_state() const;
   // The text of summary.json for a result (always valid JSON: a non-finite number is null and
   // its key is listed under "non_finite").
   std::string summary_json(const RunResult& r) const;
