@@ -7,10 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "burn/module.hpp"
 #include "config/scene.hpp"
 #include "core/error.hpp"
 #include "driver/simulation.hpp"
 #include "precision.hpp"
+#include "strength/module.hpp"
 
 namespace mp::test {
 

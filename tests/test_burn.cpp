@@ -462,7 +462,7 @@ TEST(BurnFraction, CjVolumeOfLibraryExplosives) {
   int checked = 0;
   for (const auto& name : mp::materials::material_names()) {
     const auto* m = mp::materials::find_material(name);
-    if (m->eos != "jwl") continue;
+    if (m->eos != mp::eos::kJwl) continue;
     const double rho0 = m->rho0, d = m->param("D"), pcj = m->param("p_cj");
     const double e0 = m->param("E0") / rho0;
     const double rel = double(mp::burn::cj_relative_volume(Real(rho0), Real(d), Real(pcj)));

@@ -88,7 +88,8 @@ TEST(BurnCycle, ClosedTubeConservesTotalEnergy) {
                                       "boundaries.x=reflective", "time.end=1.2"}));
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
-  const auto f = test::gather(r.sim->mesh(), r.sim->hydro().burn()->fraction(), Centering::Cell);
+  const auto f =
+      test::gather(r.sim->mesh(), r.sim->hydro().module<burn::Burn>()->fraction(), Centering::Cell);
   const double fmin = *std::min_element(f.begin(), f.end());
   std::printf(
       "closed tube: %ld cycles, total energy change %.3e (bound %.3e), least burn "

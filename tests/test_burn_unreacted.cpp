@@ -73,7 +73,7 @@ ShockRun run_shock(int n, double up, double t_end) {
   EXPECT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
   const auto p = test::gather(m, r.sim->hydro().state().p, Centering::Cell);
-  const auto f = test::gather(m, r.sim->hydro().burn()->fraction(), Centering::Cell);
+  const auto f = test::gather(m, r.sim->hydro().module<burn::Burn>()->fraction(), Centering::Cell);
   ShockRun out;
   out.dx = m.dx(0);
   const double t = r.result.time;
@@ -215,7 +215,8 @@ TEST(BurnUnreacted, LayoutsAgreeBitForBitWithTheUnreactedEos) {
       EXPECT_LT(std::abs(m1[q] - m0[q]), bound) << "material " << q;
     }
     if (l == 1) {
-      const auto f = test::gather(m, r.sim->hydro().burn()->fraction(), Centering::Cell);
+      const auto f =
+          test::gather(m, r.sim->hydro().module<burn::Burn>()->fraction(), Centering::Cell);
       std::printf("charge_3d with PBX 9404 + unreacted EOS: %ld cycles, largest F %.4f\n",
                   r.result.cycles, *std::max_element(f.begin(), f.end()));
     }

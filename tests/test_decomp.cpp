@@ -46,13 +46,13 @@ Fields run_on(const Scene& scene, int nranks) {
         for (int which : {1, 2})
           f.mat_state.push_back(test::gather(m, mm->material_field(q, which), Centering::Cell));
       }
-    if (const strength::Strength* st = r.sim->hydro().strength())
+    if (const strength::Strength* st = r.sim->hydro().module<strength::Strength>())
       for (int q = 0; q < st->sets(); ++q) {
         const strength::StressSet set = st->gathered(q);
         for (const Field3& c : set.s) f.strength.push_back(test::gather(m, c, Centering::Cell));
         f.strength.push_back(test::gather(m, set.eps_p, Centering::Cell));
       }
-    if (const burn::Burn* b = r.sim->hydro().burn())
+    if (const burn::Burn* b = r.sim->hydro().module<burn::Burn>())
       f.burn = test::gather(m, b->fraction(), Centering::Cell);
     f.cycles = r.result.cycles;
     r.sim.reset();

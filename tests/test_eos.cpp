@@ -94,20 +94,20 @@ std::vector<Case> consistency_cases() {
   for (const auto& name : mp::materials::material_names()) {
     const auto* m = mp::materials::find_material(name);
     Case c{name, mp::materials::make_eos(*m), m->rho0, {}, {}};
-    if (m->eos == "ideal_gas") {
+    if (m->eos == mp::eos::kIdealGas) {
       // Strong expansion to 1e-3 rho0 and compression to 20 rho0, energies from 1e-2 to 1e4
       // times that of the gas at 1 atm and rho0.
       c.x = {1e-3, 1e-2, 0.1, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0};
       const double g = m->param("gamma");
       const double e_atm = kAtm / ((g - 1) * m->rho0);
       c.e = {1e-2 * e_atm, e_atm, 1e2 * e_atm, 1e4 * e_atm};
-    } else if (m->eos == "stiffened_gas") {
+    } else if (m->eos == mp::eos::kStiffenedGas) {
       // Tension to 0.8 rho0, compression to 3 rho0; e above p_inf/rho keeps p + p_inf > 0.
       c.x = {0.8, 0.9, 0.999, 1.001, 1.2, 1.5, 2.0, 3.0};
       const double pinf = m->param("p_inf");
       c.e = {1.01 * pinf / (0.8 * m->rho0), 2 * pinf / (0.8 * m->rho0), 10 * pinf / (0.8 * m->rho0),
              100 * pinf / (0.8 * m->rho0)};
-    } else if (m->eos == "jwl") {
+    } else if (m->eos == mp::eos::kJwl) {
       // Products from 1e-3 of the initial density (far expansion) to 2x (beyond CJ, about
       // 1.35x), energies from 1 % to 3x the detonation energy.
       c.x = {1e-3, 1e-2, 0.05, 0.1, 0.3, 0.5, 0.8, 1.0, 1.3, 1.6, 2.0};
@@ -218,7 +218,7 @@ TEST(Eos, MieGruneisenHugoniotReproducesUsUpLine) {
   int materials = 0;
   for (const auto& name : mp::materials::material_names()) {
     const auto* m = mp::materials::find_material(name);
-    if (m->eos != "mie_gruneisen") continue;
+    if (m->eos != mp::eos::kMieGruneisen) continue;
     ++materials;
     const Eos eos = mp::materials::make_eos(*m);
     const double rho0 = m->rho0, c0 = m->param("c0"), s = m->param("s");
@@ -289,7 +289,7 @@ TEST(Eos, LibraryJwlMaterialsReproduceTabulatedCj) {
   int checked = 0;
   for (const auto& name : mp::materials::material_names()) {
     const auto* m = mp::materials::find_material(name);
-    if (m->eos != "jwl") continue;
+    if (m->eos != mp::eos::kJwl) continue;
     const Eos eos = mp::materials::make_eos(*m);
     const auto cj = mp::eos::jwl_cj_from_tabulated(eos.jwl(), m->param("E0") / m->rho0,
                                                    m->param("D"), m->param("p_cj"));

@@ -16,7 +16,7 @@ TEST(Hugoniot, MieGrueneisenMaterialsAgainstARigidWall) {
   for (const char* name : {"copper", "aluminium_6061", "steel_4340", "tungsten", "water"}) {
     const materials::MaterialData* m = materials::find_material(name);
     ASSERT_NE(m, nullptr) << name;
-    ASSERT_EQ(m->eos, "mie_gruneisen") << name;
+    ASSERT_EQ(m->eos, mp::eos::kMieGruneisen) << name;
     const double rho0 = m->rho0, c0 = m->param("c0"), s = m->param("s");
     const double us = c0 + s * up;                   // shock speed in the material's frame
     const double p_exact = rho0 * us * up;           // momentum jump
@@ -138,7 +138,7 @@ TEST(Materials, HugoniotParametersEqualTheirSources) {
   for (const Row& r : rows) {
     const materials::MaterialData* m = materials::find_material(r.name);
     ASSERT_NE(m, nullptr) << r.name;
-    ASSERT_EQ(m->eos, "mie_gruneisen") << r.name;
+    ASSERT_EQ(m->eos, mp::eos::kMieGruneisen) << r.name;
     const double want[4] = {r.rho0, r.c0 * r.to_cm_per_us, r.s, r.gamma0};
     const double have[4] = {m->rho0, m->param("c0"), m->param("s"), m->param("gamma0")};
     const char* key[4] = {"rho0", "c0", "s", "gamma0"};

@@ -60,9 +60,10 @@ TEST_P(ChargeClosure, ConservesMassAndEnergyToRoundOff) {
     EXPECT_LT(std::abs(m1[q] - m0[q]), mass_bound) << "material " << q;
   }
   const Mesh& mesh = r.sim->mesh();
-  const auto f = test::gather(mesh, r.sim->hydro().burn()->fraction(), Centering::Cell);
+  const auto f =
+      test::gather(mesh, r.sim->hydro().module<burn::Burn>()->fraction(), Centering::Cell);
   const auto he = test::gather(mesh, r.sim->hydro().materials()->fraction(1), Centering::Cell);
-  const strength::Strength* st = r.sim->hydro().strength();
+  const strength::Strength* st = r.sim->hydro().module<strength::Strength>();
   const auto eps =
       test::gather(mesh, st->gathered(st->set_of(3)).eps_p, Centering::Cell);  // copper's
   const auto cu = test::gather(mesh, r.sim->hydro().materials()->fraction(3), Centering::Cell);
@@ -160,7 +161,8 @@ TEST(MultiMaterialModules, KenamondShadowThroughPaintedFractions) {
     }());
     sim.initialize();
     const Mesh& m = sim.mesh();
-    const auto t = test::gather(m, sim.hydro().burn()->lighting_time(), Centering::Cell);
+    const auto t =
+        test::gather(m, sim.hydro().module<burn::Burn>()->lighting_time(), Centering::Cell);
     const auto he = test::gather(m, sim.hydro().materials()->fraction(1), Centering::Cell);
     const double h = 2 * half / n;
     double max_err = 0, mean = 0, min_excess = 1e300;
@@ -221,7 +223,7 @@ TEST(MultiMaterialModules, MaterialsWithoutStrengthCarryNoStress) {
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
   // copper's stress set (the steel of charge_3d.yaml has strength too, but this scene has none)
-  const strength::Strength* strength = r.sim->hydro().strength();
+  const strength::Strength* strength = r.sim->hydro().module<strength::Strength>();
   const strength::StressSet st = strength->gathered(strength->set_of(3));
   std::vector<std::vector<double>> s;
   for (const Field3& c : st.s) s.push_back(test::gather(m, c, Centering::Cell));
@@ -291,7 +293,7 @@ TEST(MultiMaterialModules, TwoSolidsInOneCellYieldOnTheirOwnSurfaces) {
        "time.end=1.0", "output.write=false"}));
   ASSERT_TRUE(r.result.ok) << r.result.health.what;
   const Mesh& m = r.sim->mesh();
-  const strength::Strength* st = r.sim->hydro().strength();
+  const strength::Strength* st = r.sim->hydro().module<strength::Strength>();
   ASSERT_EQ(st->sets(), 2);
   const auto hard = test::gather(m, r.sim->hydro().materials()->fraction(1), Centering::Cell);
   double vm_lo[2] = {1e30, 1e30}, vm_hi[2] = {0, 0}, eps_lo[2] = {1e30, 1e30};
@@ -354,7 +356,7 @@ TEST(MultiMaterialModules, CompactStressSetsOnlyWhereTheMaterialIs) {
     const Mesh& m = r.sim->mesh();
     cells = double(m.extent(Centering::Cell, 0)) * m.extent(Centering::Cell, 1) *
             m.extent(Centering::Cell, 2);
-    ASSERT_EQ(r.sim->hydro().strength()->sets(), 2);
+    ASSERT_EQ(r.sim->hydro().module<strength::Strength>()->sets(), 2);
     set_bytes[l] =
         tracker.live_bytes_with("stress_xx", "stress_yy", "stress_zz", "stress_xy", "stress_yz",
                                 "stress_zx", "stress_half_", "plastic_strain");

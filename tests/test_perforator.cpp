@@ -109,7 +109,8 @@ TEST(Perforator, CoarseSmokeRun) {
 
   // Detonation: some explosive has burnt (burn fraction > 0), and the cells the front passed
   // first are fully burnt (the ramp is 2 zones, 0.6 cm, crossed in 0.75 us at D = 0.798).
-  const auto burn = test::gather(m, c.ran.sim->hydro().burn()->fraction(), Centering::Cell);
+  const auto burn =
+      test::gather(m, c.ran.sim->hydro().module<burn::Burn>()->fraction(), Centering::Cell);
   long burnt = 0;
   double fmax = 0;
   for (double f : burn) {

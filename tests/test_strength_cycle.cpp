@@ -33,7 +33,8 @@ Line line_x(const test::Ran& r) {
   const auto rho = test::gather(m, st.rho, Centering::Cell);
   const auto p = test::gather(m, st.p, Centering::Cell);
   const auto u = test::gather(m, st.u, Centering::Node);
-  const auto sxx = test::gather(m, r.sim->hydro().strength()->stress()[0], Centering::Cell);
+  const auto sxx =
+      test::gather(m, r.sim->hydro().module<strength::Strength>()->stress()[0], Centering::Cell);
   Line l;
   l.dx = m.dx(0);
   l.t = r.result.time;
@@ -287,7 +288,8 @@ TEST(StrengthCycle, CollisionConservesTotalEnergyToRoundOff) {
   const double de = (r.result.end.total() - r.result.start.total()) / r.result.start.total();
   const double bound = test::energy_roundoff(r.result.cycles);
   const auto eps =
-      test::gather(r.sim->mesh(), r.sim->hydro().strength()->plastic_strain(), Centering::Cell);
+      test::gather(r.sim->mesh(), r.sim->hydro().module<strength::Strength>()->plastic_strain(),
+                   Centering::Cell);
   const double eps_max = *std::max_element(eps.begin(), eps.end());
   std::printf(
       "collision: %ld cycles, total energy change %.3e (round-off bound %.3e), largest "

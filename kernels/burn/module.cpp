@@ -23,6 +23,7 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   mixed_ = setup.mixed;
   unreacted_ = setup.unreacted;
   e0_ = setup.e0;
+  reactive_ = {-1, f_, params_.d_cj, mixed_, unreacted_, e0_};
   if (!setup.programmed || setup.material >= 0) return;
   // every cell is explosive in a single-material scene, so the Huygens construction is the
   // straight-line distance
@@ -35,6 +36,7 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup, const mat::MaterialState* m
     : Burn(mesh, setup) {
   mm_ = materials;
   material_ = setup.material;
+  reactive_.material = material_;
 }
 
 // Lighting times on the whole global mesh, each rank keeping its block. Host-side, once.
@@ -190,6 +192,13 @@ void Burn::update(const Field3& rho, double dt) {
 void Burn::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
                  const Field3& rho, const Field3& pre, int order) {
   hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
+}
+
+void Burn::after_eos(const Field3& /*rho*/, const Field3& /*e*/, const Field3& p,
+                     const Field3& c) const {
+  if (mm_) return;  // (the multi-material EOS applies F and D itself)
+  if (!mixed_) scale_pressure(p);
+  raise_sound_speed(c);
 }
 
 std::vector<FieldSpec> Burn::fields(unsigned /*use*/) const {

@@ -69,6 +69,23 @@ class Burn : public hydro::Module {
   // The module seam (hydro/module.hpp). Fields: the burn fraction (dumped, checkpointed, in the
   // cell halo) and the lighting times (dumped; rebuilt from the deck and the materials).
   const char* name() const override { return "burn"; }
+  // The explosive's EOS closure for the hydro's EOS kernels; the pressure scaled by F where
+  // they do not apply it (a single-material explosive without an unreacted EOS), c raised to D
+  // where F < 1 (the multi-material kernels do both themselves); F advanced after the
+  // Lagrangian step; F per mass of the explosive in the remap.
+  const eos::Reactive* reactive() const override { return &reactive_; }
+  std::vector<unsigned> carriers() const override { return {mm_ ? 1u << material_ : 1u}; }
+  void after_eos(const Field3& rho, const Field3& e, const Field3& p,
+                 const Field3& c) const override;
+  void half_step_pressure(const Field3& p_half) const override {
+    if (!mm_ && !mixed_) scale_pressure(p_half);
+  }
+  void after_lagrange(const Field3& rho, Real dt) override { update(rho, double(dt)); }
+  void remap(const std::vector<hydro::Carrier>& mine, const std::array<bool, 3>& axes,
+             const Field3& pre, int order) override {
+    remap(axes, mine[0].flux, mine[0].rho, pre, order);
+  }
+  std::vector<Field3> carried_fields(int) const override { return {f_}; }
   std::vector<FieldSpec> fields(unsigned use) const override;
   // Lighting times from the explosive's volume fraction (multi-material scenes).
   void materials_placed() override { light(); }
@@ -98,6 +115,7 @@ class Burn : public hydro::Module {
   Real e0_ = 0;
   BurnParams params_;
   Field3 f_, t_light_, scratch_;
+  eos::Reactive reactive_;
   double time_ = 0;
 };
 

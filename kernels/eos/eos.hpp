@@ -22,6 +22,23 @@ enum EosKind : int {
   kPolynomial = 3,    // params: rho0, A1, A2, A3, B0, B1
   kJwl = 4,           // params: rho0, A, B, R1, R2, omega
 };
+inline constexpr int kEosKindCount = 5;
+// The decks' and the material library's name of an EOS kind.
+inline const char* eos_name(EosKind k) {
+  switch (k) {
+    case kIdealGas:
+      return "ideal_gas";
+    case kStiffenedGas:
+      return "stiffened_gas";
+    case kMieGruneisen:
+      return "mie_gruneisen";
+    case kPolynomial:
+      return "polynomial";
+    case kJwl:
+      return "jwl";
+  }
+  return "?";
+}
 
 // Smallest c^2 handed out, (cm/us)^2, wherever the analytic c^2 is not positive.
 inline constexpr Real kSoundSpeed2Floor = Real(1e-24);

@@ -426,8 +426,7 @@ std::vector<OutputField> Hydro::output_fields() const {
 
 std::vector<Module*> Hydro::modules() const {
   std::vector<Module*> m;
-  if (strength_) m.push_back(strength_.get());
-  if (burn_) m.push_back(burn_.get());
+  for (const auto& p : modules_) m.push_back(p.get());
   return m;
 }
 

@@ -184,23 +184,22 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
                               const Field3& c) const {
   if (mm_) {
     mm_equation_of_state();  // (the explosive's burn fraction applied there)
-    if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
+    for (const Module* m : modules()) m->after_eos(rho, e, p, c);
     return;
   }
   const auto eos = eos_;
-  if (burn_ && burn_->mixed()) {
-    // an explosive with an unreacted EOS: p and c of the two phases at frozen F (burn.hpp)
-    const auto un = burn_->unreacted();
-    const Real e0 = burn_->e0();
-    auto f = burn_->fraction();
+  if (reactive_ && reactive_->mixed) {
+    // an explosive with an unreacted EOS: p and c of the two phases at frozen F (reactive.hpp)
+    const auto un = reactive_->unreacted;
+    const Real e0 = reactive_->e0;
+    auto f = reactive_->fraction;
     Kokkos::parallel_for(
         "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real fi = f(i, j, k), r = rho(i, j, k), ei = e(i, j, k);
-          p(i, j, k) = burn::he_pressure_mixed_cut(un, eos, e0, fi, r, ei);
-          c(i, j, k) = burn::he_sound_speed_mixed(un, eos, e0, fi, r, ei);
+          p(i, j, k) = eos::he_pressure_mixed_cut(un, eos, e0, fi, r, ei);
+          c(i, j, k) = eos::he_sound_speed_mixed(un, eos, e0, fi, r, ei);
         });
-    if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
-    burn_->raise_sound_speed(c);
+    for (const Module* m : modules()) m->after_eos(rho, e, p, c);
     return;
   }
   Kokkos::parallel_for(
@@ -208,11 +207,7 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
         p(i, j, k) = eos.pressure_cut(rho(i, j, k), e(i, j, k));
         c(i, j, k) = eos.sound_speed_cut(rho(i, j, k), e(i, j, k));
       });
-  if (strength_) strength_->stiffen_sound_speed(rho, e, p, c);
-  if (burn_) {
-    burn_->scale_pressure(p);
-    burn_->raise_sound_speed(c);
-  }
+  for (const Module* m : modules()) m->after_eos(rho, e, p, c);
 }
 
 void Hydro::viscosity() {

@@ -25,8 +25,8 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
   s_.ke_unpaid = Kokkos::View<double, MemSpace>("ke_fix_unpaid");
   s_.ke_redo = Kokkos::View<int, MemSpace>("ke_fix_redo");
   if (eos.size() == 1 && opt.heat_flux > 0) s_.cjump = mesh.new_field("conduction_jump", C);
-  // (strength has its own forces on the undeformed faces: the fixed geometry there)
-  mid_geometry_ = eos.size() == 1 && opt.mid_geometry && opt.strength.kind == strength::kNoStrength;
+  // (a module with forces of its own turns it off: add_module)
+  mid_geometry_ = eos.size() == 1 && opt.mid_geometry;
   if (mid_geometry_) {
     u0_ = mesh.new_field("velocity_x_start", N);
     v0_ = mesh.new_field("velocity_y_start", N);
@@ -60,7 +60,7 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     }
   }
   if (eos.size() == 1 && !opt.unsplit && opt.ke_fix && opt.free_expansion > 0 &&
-      eos[0].kind == eos::kIdealGas && opt.strength.kind == strength::kNoStrength && !opt.burn.on) {
+      eos[0].kind == eos::kIdealGas) {  // (and no module: add_module)
     expansion_gm1_ = Real(eos[0].params[0] - 1);
     s_.expansion_work = mesh.new_field("expansion_work", N);
     s_.expansion_any = Kokkos::View<int, MemSpace>("expansion_any");
@@ -77,36 +77,40 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     for (int m = 0; m < mats_.n; ++m) floors.push_back(mats_.eos[m].energy_floor());
     mm_->set_energy_floors(floors);
   }
-  if (opt.strength.kind != strength::kNoStrength) {
-    if (mm_) throw RunError("a multi-material scene gives strength per material");
-    strength_ = std::make_unique<strength::Strength>(mesh, opt.strength, opt.strength_rho0);
+}
+
+void Hydro::add_module(std::unique_ptr<Module> m) {
+  // the mid-step geometry's forces are the hydro's own: a module with forces keeps the fixed
+  // faces (the strength module's deviator acts on the undeformed faces)
+  if (m->adds_forces() && mid_geometry_) {
+    mid_geometry_ = false;
+    u0_ = v0_ = w0_ = Field3();
   }
-  if (mm_ && opt.material_strength.carriers() != 0) {
-    if (opt.material_strength.n != mats_.n)
-      throw RunError("strength models for " + std::to_string(opt.material_strength.n) +
-                     " materials in a scene of " + std::to_string(mats_.n));
-    strength_ = std::make_unique<strength::Strength>(mesh, opt.material_strength, mm_.get(),
-                                                     opt.material_names);
-    // one carrier per stress set: its own material's mass
-    for (int q = 0; q < strength_->sets(); ++q)
-      carrier_mask_[ncarrier_++] = 1u << strength_->set(q).material;
+  // the free-expansion rule acts in scenes without modules
+  if (expansion_gm1_ > 0) {
+    expansion_gm1_ = 0;
+    s_.expansion_work = Field3();
+    s_.expansion_any = Kokkos::View<int, MemSpace>();
   }
-  if (opt.burn.on) {
-    if (!mm_) {
-      burn_ = std::make_unique<burn::Burn>(mesh, opt.burn);
-    } else {
-      if (opt.burn.material < 0 || opt.burn.material >= mats_.n)
-        throw RunError("burn: the explosive's material id is not set");
-      burn_ = std::make_unique<burn::Burn>(mesh, opt.burn, mm_.get());
-      burn_carrier_ = ncarrier_;
-      carrier_mask_[ncarrier_++] = 1u << opt.burn.material;
+  if (const eos::Reactive* r = m->reactive()) {
+    if (reactive_) throw RunError("a scene holds at most one explosive");
+    if (mm_ && (r->material < 0 || r->material >= mats_.n))
+      throw RunError("burn: the explosive's material id is not set");
+    reactive_ = r;
+  }
+  const std::vector<unsigned> masks = m->carriers();
+  first_carrier_.push_back(ncarrier_);
+  carriers_.push_back(int(masks.size()));
+  if (mm_)
+    for (unsigned mask : masks) {
+      if (ncarrier_ == kMaxCarriers) throw RunError("too many module carriers in one scene");
+      const std::string id = std::to_string(ncarrier_);
+      carrier_mask_[ncarrier_] = mask;
+      carrier_flux_[ncarrier_] = mesh_.new_field("carrier_mass_flux_" + id, Centering::Node);
+      carrier_rho_[ncarrier_] = mesh_.new_field("carrier_density_" + id, Centering::Cell);
+      ++ncarrier_;
     }
-  }
-  for (int c = 0; c < ncarrier_; ++c) {
-    const std::string id = std::to_string(c);
-    carrier_flux_[c] = mesh.new_field("carrier_mass_flux_" + id, N);
-    carrier_rho_[c] = mesh.new_field("carrier_density_" + id, Centering::Cell);
-  }
+  modules_.push_back(std::move(m));
 }
 
 void Hydro::exchange_cells() {

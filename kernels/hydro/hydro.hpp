@@ -13,7 +13,6 @@
 #include <type_traits>
 #include <vector>
 
-#include "burn/module.hpp"
 #include "core/columns.hpp"
 #include "eos/eos.hpp"
 #include "hydro/faces.hpp"
@@ -25,7 +24,6 @@
 #include "mesh/field.hpp"
 #include "mesh/halo.hpp"
 #include "mesh/mesh.hpp"
-#include "strength/module.hpp"
 
 namespace mp::hydro {
 
@@ -114,17 +112,6 @@ struct Options {
   Real solid_floor;
   // (1e-10, or 64 ulps where Real cannot hold that: 7.6e-6 in float)
   Real relax_tol = Real(std::max(1e-10, 64.0 * double(std::numeric_limits<Real>::epsilon())));
-  // Strength of a single-material scene's material (kernels/strength/module.hpp): the
-  // flow-stress model and the reference density; kind kNoStrength leaves the module out.
-  strength::FlowStress strength;
-  Real strength_rho0 = 1;
-  // Strength of a multi-material scene: one model per material (n == 0, or every kind
-  // kNoStrength, leaves the module out), and the materials' names (the dumps' field suffixes).
-  strength::MaterialModels material_strength;
-  std::vector<std::string> material_names;
-  // Burn of the explosive (kernels/burn/module.hpp); off unless burn.on. A multi-material scene
-  // names the explosive's material id in burn.material.
-  burn::BurnSetup burn;
 };
 
 struct State {
@@ -236,16 +223,21 @@ class Hydro {
   // The per-material state of a multi-material scene, or nullptr.
   mat::MaterialState* materials() { return mm_.get(); }
   const mat::MaterialState* materials() const { return mm_.get(); }
-  // The strength module, or nullptr when no material has strength.
-  strength::Strength* strength() { return strength_.get(); }
-  const strength::Strength* strength() const { return strength_.get(); }
-  // The burn module, or nullptr when no material is an explosive.
-  burn::Burn* burn() { return burn_.get(); }
-  const burn::Burn* burn() const { return burn_.get(); }
-  // The physics modules the scene built (strength, then burn), through their seam
-  // (module.hpp), and the fields they register that `use` (FieldUse bits) selects.
+  // Adds a physics module (module.hpp; the driver builds those the scene needs, before the
+  // first prepare()): its carriers, its EOS closure, and what it turns off (the mid-step
+  // geometry where it adds forces; the free-expansion rule, which runs without modules).
+  void add_module(std::unique_ptr<Module> m);
+  // The scene's modules, in the order they were added (strength, then burn), and the fields
+  // they register that `use` (FieldUse bits) selects.
   std::vector<Module*> modules() const;
   std::vector<FieldSpec> module_fields(unsigned use) const;
+  // The module of type M, or nullptr (for tests and tools that read a module's own fields).
+  template <class M>
+  M* module() const {
+    for (const auto& m : modules_)
+      if (M* p = dynamic_cast<M*>(m.get())) return p;
+    return nullptr;
+  }
 
   // Fills ghosts of the primary fields and derives p, c, q (call after setting rho, e, u, v, w).
   void prepare();
@@ -306,9 +298,9 @@ class Hydro {
   // `next`: the step after this one (nullptr for the last), whose cell volumes the KE fix's
   // launch writes.
   void remap_step(const RemapStep& step, const RemapStep* next);
-  // A single-material scene without strength or burn, whose EOS and viscosity are one launch
+  // A single-material scene without modules, whose EOS and viscosity are one launch
   // (the modules adjust p and c between the two).
-  bool plain() const { return !mm_ && !strength_ && !burn_; }
+  bool plain() const { return !mm_ && modules_.empty(); }
   void viscosity_with(bool with_eos);
   // Multi-material pieces (mixed_lagrange.cpp, mixed_remap_faces.cpp, mixed_remap_cells.cpp,
   // mixed_ke_fix.cpp).
@@ -330,12 +322,10 @@ class Hydro {
   // min_fraction) holds none of the module's quantities.
   void mm_clear_absent();
   // The mass fluxes (face field of the sweep's axis) and densities the module quantities ride
-  // on: a single-material scene's cell ones, or a multi-material scene's carriers.
-  struct Carrier {
-    std::array<Field3, 3> flux;
-    Field3 rho;
-  };
+  // on (module.hpp Carrier): a single-material scene's cell ones, or a multi-material scene's
+  // carrier `slot`; and module i's carriers in its carriers() order.
   Carrier carrier(int slot) const;
+  std::vector<Carrier> carriers_of(std::size_t i) const;
 
  private:
   const Mesh& mesh_;
@@ -344,13 +334,17 @@ class Hydro {
   eos::Eos eos_;
   mat::MaterialSet mats_;
   std::unique_ptr<mat::MaterialState> mm_;
-  std::unique_ptr<strength::Strength> strength_;
-  std::unique_ptr<burn::Burn> burn_;
+  // The physics modules (module.hpp), and the first carrier slot and number of carriers of
+  // each; the one whose EOS closure the EOS kernels evaluate (an explosive), if any.
+  std::vector<std::unique_ptr<Module>> modules_;
+  std::vector<int> first_carrier_, carriers_;
+  const eos::Reactive* reactive_ = nullptr;
   // Multi-material scenes with modules: the materials whose mass carries each module's cell
-  // quantities (slots 0 .. sets - 1: the strength module's stress sets, each its own material;
-  // then the burn module's explosive), their mass flux through the faces of the sweep (written
-  // by the material flux kernel) and their density (sum alpha_m rho_m over them).
-  int ncarrier_ = 0, burn_carrier_ = -1;
+  // quantities (the modules' carriers(), in the order they were added: the strength module's
+  // stress sets, each its own material, then the burn module's explosive), their mass flux
+  // through the faces of the sweep (written by the material flux kernel) and their density
+  // (sum alpha_m rho_m over them).
+  int ncarrier_ = 0;
   unsigned carrier_mask_[kMaxCarriers] = {};
   Field3 carrier_flux_[kMaxCarriers], carrier_rho_[kMaxCarriers];
   State s_;

@@ -331,21 +331,20 @@ Health Hydro::lagrange(Real dt, long cycle) {
   // Predictor: half-step volume change with the start-of-step velocities, pressure at t+dt/2.
   // (Each cell's six face fluxes are found in the predictor's launch, from the node
   // velocities: no stored face fluxes.)
-  const bool mixed = burn_ && !mm_ && burn_->mixed();
-  const bool has_strength = strength_ != nullptr;
+  const bool mixed = !mm_ && reactive_ && reactive_->mixed;
   const std::array<Field3, 3> start_fields{u0_, v0_, w0_};
   const std::array<Field3, 3>* start = mid_geometry_ ? &start_fields : nullptr;
   if (mm_) {
     mm_predictor(vol, hf);
   } else if (mixed) {
-    // an explosive with an unreacted EOS: the two phases at the half step (burn.hpp)
-    const auto un = burn_->unreacted();
-    const Real e0 = burn_->e0();
-    auto f = burn_->fraction();
+    // an explosive with an unreacted EOS: the two phases at the half step (reactive.hpp)
+    const auto un = reactive_->unreacted;
+    const Real e0 = reactive_->e0;
+    auto f = reactive_->fraction;
     predictor_kernel(
         mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
-          return burn::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
+          return eos::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
         },
         start);
   } else {
@@ -355,13 +354,17 @@ Health Hydro::lagrange(Real dt, long cycle) {
                        PressureCut<decltype(kind)::value>{eos}, start);
     });
   }
-  if (burn_ && !mm_ && !mixed) burn_->scale_pressure(ph);  // (multi-material: in mm_predictor)
-  // The half-step deviator and its nodal forces (kernels/strength/module.hpp).
+  // the modules' part of the half-step pressure (an explosive's F where no kernel applied it;
+  // multi-material: in mm_predictor), then their nodal forces (the strength module's
+  // half-step deviator)
+  for (const Module* m : modules()) m->half_step_pressure(ph);
   std::array<Field3, 3> fs;
-  if (has_strength) {
-    strength_->predictor(s_.u, s_.v, s_.w, rho, e, ph, dt);
-    fs = strength_->force();
-  }
+  bool has_strength = false;  // (a module's forces: the strength module's)
+  for (Module* m : modules())
+    if (const std::array<Field3, 3>* f = m->predictor(s_.u, s_.v, s_.w, rho, e, ph, dt)) {
+      fs = *f;
+      has_strength = true;
+    }
   auto fsx = fs[0], fsy = fs[1], fsz = fs[2];
 
   // Nodal acceleration from the gradient of p + q; nodal mass is 1/8 of the 8 cells around.
@@ -532,13 +535,13 @@ Health Hydro::lagrange(Real dt, long cycle) {
   };
   if (mm_) corrector("lagrange::volume_flux", std::false_type{});
   // the deviator's work and the full-step deviator, from rho^n and e^n (before the hydro's)
-  if (strength_) strength_->corrector(ub, vb, wb, rho, e, ph, dt);
+  for (Module* m : modules()) m->corrector(ub, vb, wb, rho, e, ph, dt);
   if (mm_)
     mm_corrector(vol);
   else
     corrector("lagrange::corrector", std::true_type{});
-  // the explosive burns to the end of the step, at its new density (kernels/burn/module.hpp)
-  if (burn_) burn_->update(rho, double(dt));
+  // the modules' end of the step (the explosive burns, at its new density)
+  for (Module* m : modules()) m->after_lagrange(rho, dt);
 
   long total_bad = 0;
   MPI_Allreduce(&bad, &total_bad, 1, MPI_LONG, MPI_SUM, mesh_.comm());

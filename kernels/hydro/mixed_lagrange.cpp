@@ -52,9 +52,9 @@ struct BurnHook {
 // lagrange::volume_flux). docs/numerics.md, "Mixed cells".
 // (mat::holds_several tells the two apart.)
 
-BurnHook burn_hook(const burn::Burn* b) {
-  if (!b) return {};
-  return {b->material(), b->fraction(), b->params().d_cj, b->mixed(), b->unreacted(), b->e0()};
+BurnHook burn_hook(const eos::Reactive* r) {
+  if (!r) return {};
+  return {r->material, r->fraction, r->d_cj, r->mixed, r->unreacted, r->e0};
 }
 
 // The for_cells bodies of the multi-material kernels below (functors at namespace scope, not
@@ -77,8 +77,8 @@ struct MixedEos {
       Real pm, cm;
       if (bh.mixed && m.m == bh.material) {
         const Real f = bh.f(i, j, k);
-        pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
-        cm = burn::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+        pm = eos::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+        cm = eos::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
         unburnt = f < 1;
       } else {
         pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
@@ -136,8 +136,8 @@ struct MixedPredictor {
       const Real e_half = pdv_energy(*m.e, *m.p, dv, several ? ws * *m.rho : wq, mass);
       Real pm;
       if (bh.mixed && m.m == bh.material) {
-        pm = burn::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
-                                         mass / v_half, e_half);
+        pm = eos::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
+                                        mass / v_half, e_half);
       } else {
         pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
         if (m.m == bh.material) pm *= bh.f(i, j, k);
@@ -195,12 +195,12 @@ struct MixedCorrector {
           c2 = eq.sound_speed2(r, en);
         } else if (bh.mixed) {
           const Real f = bh.f(i, j, k);
-          ps = burn::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
-          c2 = burn::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+          ps = eos::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+          c2 = eos::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
         } else {
           const Real f = bh.f(i, j, k);
-          ps = burn::he_pressure(eq, f, r, en);
-          c2 = burn::he_sound_speed2(eq, f, r, en);
+          ps = eos::he_pressure(eq, f, r, en);
+          c2 = eos::he_sound_speed2(eq, f, r, en);
         }
       };
       relax_pressures_with(n, pc, mv, mm, me, pm, iters, tol, fmin * vnew);
@@ -446,7 +446,7 @@ void with_pure_columns(const mat::MaterialState& mm, const BurnHook& bh, const s
 void Hydro::mm_equation_of_state() const {
   const auto mats = mats_;
   auto p = s_.p, c = s_.c, rho = s_.rho, e = s_.e;
-  const BurnHook bh = burn_hook(burn_.get());
+  const BurnHook bh = burn_hook(reactive_);
   const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
   const mat::MaterialState& mm = *mm_;
   with_pure_columns(mm, bh, "eos::pressure_sound_speed", all_lo(), all_hi(mesh_),
@@ -463,7 +463,7 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const Sym6At<Field3> Q = sym6_view(qt[0], qt[1], qt[2], qt[3], qt[4], qt[5]);
   auto u = s_.u, v = s_.v, w = s_.w;
   const Real ax = f[0], ay = f[1], az = f[2];
-  const BurnHook bh = burn_hook(burn_.get());
+  const BurnHook bh = burn_hook(reactive_);
   const Field3 bf = bh.material >= 0 ? bh.f : rho;  // (read only with a burn)
   const mat::MaterialState& mm = *mm_;
   with_pure_columns(mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
@@ -495,7 +495,7 @@ void Hydro::mm_corrector(Real vol) {
   const Real tol = opt_.relax_tol;
   const Real fmin = opt_.min_fraction;
   const Real sfloor = opt_.solid_floor;
-  const BurnHook bh = burn_hook(burn_.get());
+  const BurnHook bh = burn_hook(reactive_);
   auto qw = s_.qw, rho = s_.rho, e = s_.e, ph = s_.p_half;
   auto fx = s_.vol_flux[0], fy = s_.vol_flux[1], fz = s_.vol_flux[2];
   const MixedCorrector op{mats, relax, iters, tol, fmin, sfloor, bh, qw, rho, e, fx, fy, fz, vol};

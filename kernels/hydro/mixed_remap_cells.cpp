@@ -396,31 +396,34 @@ void Hydro::mm_clear_absent() {
   const int ng = Mesh::ng;
   const auto end = mesh_.owned_end();
   const Policy3 owned({ng, ng, ng}, {end[0], end[1], end[2]});
-  for (int c = 0; c < ncarrier_; ++c) {
-    ClearFields fs;
-    if (c == burn_carrier_) {
-      fs.f[fs.n++] = burn_->fraction();
-    } else if (strength_->pooled()) {
-      continue;  // (a pooled set holds nothing where its material is absent)
-    } else {
-      const strength::StressSet& st = strength_->set(c);
-      for (const Field3& x : st.s) fs.f[fs.n++] = x;
-      fs.f[fs.n++] = st.eps_p;
+  for (std::size_t mi = 0; mi < modules_.size(); ++mi)
+    for (int slot = 0; slot < carriers_[mi]; ++slot) {
+      const int c = first_carrier_[mi] + slot;
+      ClearFields fs;
+      // (none: what it carries is kept elsewhere, a pooled set nothing where its material is
+      // absent)
+      for (const Field3& x : modules_[mi]->carried_fields(slot)) fs.f[fs.n++] = x;
+      if (fs.n == 0) continue;
+      auto crho = carrier_rho_[c];
+      mm_->carrier_density(carrier_mask_[c], crho);
+      Kokkos::parallel_for(
+          "remap::clear_absent", owned, KOKKOS_LAMBDA(int i, int j, int k) {
+            if (crho(i, j, k) > 0) return;
+            for (int q = 0; q < fs.n; ++q) fs.f[q](i, j, k) = 0;
+          });
     }
-    auto crho = carrier_rho_[c];
-    mm_->carrier_density(carrier_mask_[c], crho);
-    Kokkos::parallel_for(
-        "remap::clear_absent", owned, KOKKOS_LAMBDA(int i, int j, int k) {
-          if (crho(i, j, k) > 0) return;
-          for (int q = 0; q < fs.n; ++q) fs.f[q](i, j, k) = 0;
-        });
-  }
 }
 
-Hydro::Carrier Hydro::carrier(int slot) const {
+Carrier Hydro::carrier(int slot) const {
   if (!mm_) return {s_.mass_flux, s_.rho};
   const Field3 f = carrier_flux_[slot];
   return {{f, f, f}, carrier_rho_[slot]};
+}
+
+std::vector<Carrier> Hydro::carriers_of(std::size_t i) const {
+  std::vector<Carrier> c;
+  for (int q = 0; q < carriers_[i]; ++q) c.push_back(carrier(first_carrier_[i] + q));
+  return c;
 }
 
 // Explicit instantiations for the layouts' device handles.

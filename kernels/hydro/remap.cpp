@@ -286,16 +286,9 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   // multi-material runs on split sweeps, one axis per step.)
   // the strength module's quantities ride on the same mass fluxes (before rho changes)
   // (a multi-material scene's on its carriers' mass fluxes and densities)
-  if (mm_ && (strength_ || burn_)) mm_carriers();
-  if (strength_ && !strength_->pooled())
-    for (int q = 0; q < strength_->sets(); ++q) {
-      const Carrier c = carrier(q);
-      strength_->remap(q, axes, c.flux, c.rho, pre, ord);
-    }
-  if (burn_) {
-    const Carrier c = carrier(burn_carrier_);
-    burn_->remap(axes, c.flux, c.rho, pre, ord);
-  }
+  if (mm_ && !modules_.empty()) mm_carriers();
+  for (std::size_t i = 0; i < modules_.size(); ++i)
+    modules_[i]->remap(carriers_of(i), axes, pre, ord);
   auto cell_update = [=] KOKKOS_FUNCTION(int i, int j, int k) {
     Real dm = 0, de = 0;
     if (ax > 0) {
@@ -315,19 +308,11 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   if (mm_) {
     for (int d = 0; d < 3; ++d)
       if (axes[d]) mm_remap_cells(d);
-    // pooled stress sets: from the pool before the update into the pool after it (one axis
-    // per step: MaterialState::previous is the pool before this sweep's update)
-    if (strength_ && strength_->pooled()) {
-      if (int(axes[0]) + int(axes[1]) + int(axes[2]) != 1)
-        throw RunError("pooled stress sets need split remap sweeps");
-      std::vector<Field3> flux, crho;
-      for (int q = 0; q < strength_->sets(); ++q) {
-        flux.push_back(carrier_flux_[q]);
-        crho.push_back(carrier_rho_[q]);
-      }
-      strength_->remap_compact(axes, flux, crho, pre, ord);
-    }
-    if (strength_ || burn_) mm_clear_absent();
+    // what the modules keep in the pool: from the pool before the update into the pool after
+    // it (the strength module's pooled stress sets)
+    for (std::size_t i = 0; i < modules_.size(); ++i)
+      modules_[i]->remap_materials(carriers_of(i), axes, pre, ord);
+    if (!modules_.empty()) mm_clear_absent();
   } else {
     // (one axis, its flux faces' offsets constants: a column loop GCC vectorizes; the same
     // update_cell as the unsplit step's, bit for bit: 0 + x is x for the one axis's terms)

@@ -16,7 +16,7 @@ const std::vector<MaterialData>& table() {
   static const std::vector<MaterialData> materials = {
       // ---- gases -------------------------------------------------------------------------
       {"air",
-       "ideal_gas",
+       eos::kIdealGas,
        // U.S. Standard Atmosphere, 1976 (NOAA-S/T 76-1562), sea-level density 1.2250 kg/m^3
        // (T = 288.15 K, p = 101325 Pa).
        1.225e-3,
@@ -26,7 +26,7 @@ const std::vector<MaterialData>& table() {
        "rho0: U.S. Standard Atmosphere, 1976, NOAA-S/T 76-1562, sea level (1.2250 kg/m^3); "
        "gamma: 7/5, ideal diatomic gas"},
       {"helium",
-       "ideal_gas",
+       eos::kIdealGas,
        // Ideal-gas density at 273.15 K and 101325 Pa: p M / (R T) with M = 4.002602 g/mol
        // (IUPAC standard atomic weight) and R = 8.314462618 J/(mol K) (CODATA 2018):
        // 0.178576 kg/m^3.
@@ -38,7 +38,7 @@ const std::vector<MaterialData>& table() {
 
       // ---- liquids -----------------------------------------------------------------------
       {"water",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // M. A. Meyers, "Dynamic Behavior of Materials", Wiley, 1994, ch. 4, table of shock
        // Hugoniot parameters: rho0 = 1.000 g/cm^3, C0 = 1.65 km/s, S = 1.92, Gamma0 = 0.1.
        1.000,
@@ -46,7 +46,7 @@ const std::vector<MaterialData>& table() {
        "Meyers, Dynamic Behavior of Materials, Wiley, 1994, ch. 4 Hugoniot table: "
        "rho0 1.000 g/cm^3, C0 1.65 km/s, S 1.92, Gamma0 0.1"},
       {"water_stiffened",
-       "stiffened_gas",
+       eos::kStiffenedGas,
        // R. Saurel & R. Abgrall, "A multiphase Godunov method for compressible multifluid and
        // multiphase flows", J. Comput. Phys. 150 (1999) 425-467: liquid water as a stiffened gas
        // with gamma = 4.4, p_inf = 6e8 Pa (= 6e-3 Mbar). Nominal density 1.000 g/cm^3.
@@ -56,7 +56,7 @@ const std::vector<MaterialData>& table() {
 
       // ---- metals (Mie-Grueneisen, linear Us-up) -----------------------------------------
       {"copper",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // D. J. Steinberg, "Equation of state and strength properties of selected materials",
        // UCRL-MA-106439 (LLNL, 1991; change 1, 1996), OFHC copper: rho0 = 8.93 g/cm^3,
        // C0 = 0.394 cm/us, S1 = 1.489, Gamma0 = 2.02 (b = 0.47 not used: rho Gamma = rho0 Gamma0).
@@ -65,7 +65,7 @@ const std::vector<MaterialData>& table() {
        "Steinberg, UCRL-MA-106439 (1991/1996), OFHC copper: rho0 8.93, C0 0.394 cm/us, "
        "S1 1.489, Gamma0 2.02"},
       {"aluminium_6061",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // Steinberg, UCRL-MA-106439, aluminium 6061-T6: rho0 = 2.703 g/cm^3, C0 = 0.524 cm/us,
        // S1 = 1.40, Gamma0 = 1.97 (b = 0.48 not used).
        2.703,
@@ -73,7 +73,7 @@ const std::vector<MaterialData>& table() {
        "Steinberg, UCRL-MA-106439 (1991/1996), Al 6061-T6: rho0 2.703, C0 0.524 cm/us, "
        "S1 1.40, Gamma0 1.97"},
       {"steel_4340",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // Steinberg, UCRL-MA-106439, 4340 steel (Rc 38): rho0 = 7.81 g/cm^3, C0 = 0.4578 cm/us,
        // S1 = 1.33, Gamma0 = 1.67.
        7.81,
@@ -81,7 +81,7 @@ const std::vector<MaterialData>& table() {
        "Steinberg, UCRL-MA-106439 (1991/1996), 4340 steel Rc 38: rho0 7.81, C0 0.4578 cm/us, "
        "S1 1.33, Gamma0 1.67"},
       {"steel_304",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // R. G. McQueen, S. P. Marsh, J. W. Taylor, J. N. Fritz, W. J. Carter, "The equation of
        // state of solids from shock wave studies", in R. Kinslow (ed.), High-Velocity Impact
        // Phenomena, Academic Press, 1970, appendix: 304 stainless steel rho0 = 7.896 g/cm^3,
@@ -102,7 +102,7 @@ const std::vector<MaterialData>& table() {
       // changes phase on its Hugoniot (mixed-phase plateau near 21 GPa), so one line cannot
       // cover both sides; two entries, each with its range (docs/materials.md):
       {"quartz",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // alpha-quartz branch, up 0.05-1.35 km/s (0.5-20 GPa), 104 points: C0 = 3.6574 km/s,
        // S = 1.5313, Us within 0.008 km/s of the model.
        2.65,
@@ -111,7 +111,7 @@ const std::vector<MaterialData>& table() {
        "C0 0.36574 cm/us, S 1.5313: fit to Melosh's ANEOS SiO2 Hugoniot (ststewart/"
        "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 0.05-1.35 km/s, 0.5-20 GPa"},
       {"quartz_high_pressure",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // high-pressure branch, up 2.0-4.18 km/s (27-99 GPa), 27 points: C0 = 1.6275 km/s,
        // S = 1.7631, Us within 0.083 km/s of the model. C0 here is an intercept, not a sound
        // speed: below about 20 GPa this entry is far too soft. Gamma0 is the alpha-quartz value.
@@ -121,7 +121,7 @@ const std::vector<MaterialData>& table() {
        "C0 0.16275 cm/us, S 1.7631: fit to Melosh's ANEOS SiO2 Hugoniot (ststewart/"
        "aneos-fused-silica NEW-SESAME-HUG.TXT) for up 2.0-4.18 km/s, 27-99 GPa"},
       {"tungsten",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        // McQueen et al. in Kinslow (ed.), High-Velocity Impact Phenomena, 1970, appendix: tungsten
        // rho0 = 19.224 g/cm^3, C0 = 4.029 km/s, S = 1.237, Gamma0 = 1.54.
        19.224,
@@ -143,7 +143,7 @@ const std::vector<MaterialData>& table() {
       // Its rho0 (1.844) is not the products row's (pbx9404_products, 1.84): explosive at 1.84
       // sits at -2.3e-4 Mbar on this EOS (docs/numerics.md, "Burn").
       {"pbx9404_unreacted",
-       "mie_gruneisen",
+       eos::kMieGruneisen,
        1.844,
        {{"c0", 0.2423}, {"s", 1.883}, {"gamma0", 0.675}},
        "Mader, Numerical Modeling of Explosives and Propellants, HOM solid PBX 9404 (CD "
@@ -160,7 +160,7 @@ const std::vector<MaterialData>& table() {
       // through the products Hugoniot to 4-5 digits (D and p_cj within 0.03 %, checked in
       // tests/test_eos.cpp), which a mistyped coefficient would not.
       {"pbx9404_products",
-       "jwl",
+       eos::kJwl,
        // PBX 9404 (HMX 94 / NC 3 / CEF 3): rho0 1.84 g/cm^3, A 8.524e11 Pa, B 1.802e10 Pa,
        // R1 4.60, R2 1.30, omega 0.38, E0 10.2e9 J/m^3; D 8.80 km/s, p_cj 37 GPa.
        1.84,
@@ -176,7 +176,7 @@ const std::vector<MaterialData>& table() {
        "rho0 1.84, A 8.524 Mbar, B 0.1802 Mbar, R1 4.6, R2 1.3, omega 0.38, E0 0.102 Mbar, "
        "D 0.880 cm/us, p_cj 0.37 Mbar"},
       {"comp_b_products",
-       "jwl",
+       eos::kJwl,
        // Composition B (RDX/TNT), the 1.717 g/cm^3 row. The transcription labels it
        // "Composition B-3"; which grade the handbook row names could not be read, so the entry
        // is called plain Composition B. rho0 1.717 g/cm^3, A 5.242e11 Pa, B 7.678e9 Pa,
@@ -195,7 +195,7 @@ const std::vector<MaterialData>& table() {
        "5.242 Mbar, B 0.07678 Mbar, R1 4.2, R2 1.1, omega 0.34, "
        "E0 0.085 Mbar, D 0.798 cm/us, p_cj 0.295 Mbar"},
       {"petn_products",
-       "jwl",
+       eos::kJwl,
        // PETN at 1.77 g/cm^3: A 6.171e11 Pa, B 1.6926e10 Pa, R1 4.40, R2 1.20, omega 0.25,
        // E0 10.1e9 J/m^3; D 8.30 km/s, p_cj 33.5 GPa.
        1.77,
@@ -219,7 +219,8 @@ const std::vector<MaterialData>& table() {
 Real MaterialData::param(const std::string& key) const {
   const auto it = params.find(key);
   if (it == params.end()) {
-    throw InputError("material '" + name + "' (" + eos + " EOS) has no parameter '" + key + "'");
+    throw InputError("material '" + name + "' (" + eos::eos_name(eos) + " EOS) has no parameter '" +
+                     key + "'");
   }
   return it->second;
 }
@@ -238,23 +239,22 @@ std::vector<std::string> material_names() {
 }
 
 eos::Eos make_eos(const MaterialData& m) {
-  if (m.eos == "ideal_gas") return eos::make_eos(eos::IdealGas{m.param("gamma")});
-  if (m.eos == "stiffened_gas") {
-    return eos::make_eos(eos::StiffenedGas{m.param("gamma"), m.param("p_inf")});
+  switch (m.eos) {
+    case eos::kIdealGas:
+      return eos::make_eos(eos::IdealGas{m.param("gamma")});
+    case eos::kStiffenedGas:
+      return eos::make_eos(eos::StiffenedGas{m.param("gamma"), m.param("p_inf")});
+    case eos::kMieGruneisen:
+      return eos::make_eos(
+          eos::MieGruneisen{m.rho0, m.param("c0"), m.param("s"), m.param("gamma0")});
+    case eos::kPolynomial:
+      return eos::make_eos(eos::Polynomial{m.rho0, m.param("A1"), m.param("A2"), m.param("A3"),
+                                           m.param("B0"), m.param("B1")});
+    case eos::kJwl:
+      return eos::make_eos(eos::Jwl{m.rho0, m.param("A"), m.param("B"), m.param("R1"),
+                                    m.param("R2"), m.param("omega")});
   }
-  if (m.eos == "mie_gruneisen") {
-    return eos::make_eos(eos::MieGruneisen{m.rho0, m.param("c0"), m.param("s"), m.param("gamma0")});
-  }
-  if (m.eos == "polynomial") {
-    return eos::make_eos(eos::Polynomial{m.rho0, m.param("A1"), m.param("A2"), m.param("A3"),
-                                         m.param("B0"), m.param("B1")});
-  }
-  if (m.eos == "jwl") {
-    return eos::make_eos(eos::Jwl{m.rho0, m.param("A"), m.param("B"), m.param("R1"), m.param("R2"),
-                                  m.param("omega")});
-  }
-  throw InputError("material '" + m.name + "': unknown EOS kind '" + m.eos +
-                   "' (allowed: ideal_gas, stiffened_gas, mie_gruneisen, polynomial, jwl)");
+  throw InputError("material '" + m.name + "': unknown EOS kind " + std::to_string(int(m.eos)));
 }
 
 }  // namespace mp::materials

@@ -27,8 +27,8 @@ namespace mp::materials {
 
 struct MaterialData {
   std::string name;
-  // EOS kind: "ideal_gas", "stiffened_gas", "mie_gruneisen", "polynomial" or "jwl".
-  std::string eos;
+  // EOS kind (eos.hpp; eos_name gives the decks' word for it)
+  eos::EosKind eos;
   Real rho0;  // reference density, g/cm^3
   // EOS parameters by name, in the units above:
   //   ideal_gas:     gamma

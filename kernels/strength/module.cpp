@@ -68,6 +68,20 @@ void Strength::allocate() {
   scratch_ = mesh.new_field("strength_remap_scratch", Centering::Cell);
 }
 
+std::vector<unsigned> Strength::carriers() const {
+  std::vector<unsigned> c;
+  for (const StressSet& st : sets_) c.push_back(st.material < 0 ? 1u : 1u << st.material);
+  return c;
+}
+
+std::vector<Field3> Strength::carried_fields(int q) const {
+  if (pooled_) return {};
+  const StressSet& st = sets_[q];
+  std::vector<Field3> f(st.s.begin(), st.s.end());
+  f.push_back(st.eps_p);
+  return f;
+}
+
 std::vector<FieldSpec> Strength::fields(unsigned use) const {
   const unsigned uses = kDump | kCheckpoint | (pooled_ ? 0u : unsigned(kHalo));
   std::vector<FieldSpec> f;

@@ -107,14 +107,16 @@ class Strength : public hydro::Module {
   void stiffen_sound_speed(const Field3& rho, const Field3& e, const Field3& p,
                            const Field3& c) const;
   // Predictor: the half-step deviator from the start-of-step velocities on the owned cells and
-  // one ghost layer (the owned nodes' cells), then its force on every owned node into force_*.
-  void predictor(const Field3& u, const Field3& v, const Field3& w, const Field3& rho,
-                 const Field3& e, const Field3& p_half, Real dt);
+  // one ghost layer (the owned nodes' cells), then its force on every owned node into force_*
+  // (returned: the hydro's acceleration adds them).
+  const std::array<Field3, 3>* predictor(const Field3& u, const Field3& v, const Field3& w,
+                                         const Field3& rho, const Field3& e, const Field3& p_half,
+                                         Real dt) override;
   // Corrector, before the hydro's own (it reads rho^n, e^n): the full-step deviator and plastic
   // strain from the time-centred velocities on the owned cells, and the work of the half-step
   // deviator into e.
   void corrector(const Field3& ub, const Field3& vb, const Field3& wb, const Field3& rho,
-                 const Field3& e, const Field3& p_half, Real dt);
+                 const Field3& e, const Field3& p_half, Real dt) override;
   // One remap step over the faces normal to `axes` of stress set q: its quantities per unit
   // mass, with the cell mass fluxes of the step (owned cells; call before the cell densities
   // change). A multi-material scene passes set q's material's density (alpha_m rho_m) and
@@ -141,6 +143,23 @@ class Strength : public hydro::Module {
   // the material id appended (as the checkpoint's per-material fields are), in the cell halo
   // unless pooled.
   const char* name() const override { return "strength"; }
+  // Its deviator's nodal forces (the fixed face geometry), one carrier per stress set (its
+  // material), c stiffened after the EOS.
+  bool adds_forces() const override { return true; }
+  std::vector<unsigned> carriers() const override;
+  void after_eos(const Field3& rho, const Field3& e, const Field3& p,
+                 const Field3& c) const override {
+    stiffen_sound_speed(rho, e, p, c);
+  }
+  // The sets' per-mass remap: each set on its carrier (dense sets, before the cell update), or
+  // the pooled sets from the pool before the material update into the one after it.
+  void remap(const std::vector<hydro::Carrier>& mine, const std::array<bool, 3>& axes,
+             const Field3& pre, int order) override;
+  void remap_materials(const std::vector<hydro::Carrier>& mine, const std::array<bool, 3>& axes,
+                       const Field3& pre, int order) override;
+  // Set q's deviator and plastic strain (none when pooled: the pool holds nothing where the
+  // set's material is absent).
+  std::vector<Field3> carried_fields(int q) const override;
   std::vector<FieldSpec> fields(unsigned use) const override;
   // Pooled sets take the owned cells' values of the restored fields (cells that hold the set's
   // material).

@@ -186,6 +186,27 @@ void Strength::scatter(const std::vector<Target>& targets, Where w) const {
       });
 }
 
+void Strength::remap(const std::vector<hydro::Carrier>& mine, const std::array<bool, 3>& axes,
+                     const Field3& pre, int order) {
+  if (pooled_) return;  // (remap_materials)
+  for (int q = 0; q < sets(); ++q) remap(q, axes, mine[q].flux, mine[q].rho, pre, order);
+}
+
+void Strength::remap_materials(const std::vector<hydro::Carrier>& mine,
+                               const std::array<bool, 3>& axes, const Field3& pre, int order) {
+  // pooled stress sets: from the pool before the update into the pool after it (one axis per
+  // step: MaterialState::previous is the pool before this sweep's update)
+  if (!pooled_) return;
+  if (int(axes[0]) + int(axes[1]) + int(axes[2]) != 1)
+    throw RunError("pooled stress sets need split remap sweeps");
+  std::vector<Field3> flux, crho;
+  for (int q = 0; q < sets(); ++q) {
+    flux.push_back(mine[q].flux[0]);
+    crho.push_back(mine[q].rho);
+  }
+  remap_compact(axes, flux, crho, pre, order);
+}
+
 void Strength::remap_compact(const std::array<bool, 3>& axes, const std::vector<Field3>& flux,
                              const std::vector<Field3>& rho, const Field3& pre, int order) {
   // The sets' values before the update are gathered into the gather fields (the owned cells

@@ -83,8 +83,9 @@ void Strength::stiffen_sound_speed(const Field3& rho, const Field3& e, const Fie
       });
 }
 
-void Strength::predictor(const Field3& u, const Field3& v, const Field3& w, const Field3& rho,
-                         const Field3& e, const Field3& p_half, Real dt) {
+const std::array<Field3, 3>* Strength::predictor(const Field3& u, const Field3& v, const Field3& w,
+                                                 const Field3& rho, const Field3& e,
+                                                 const Field3& p_half, Real dt) {
   const Geometry g = mesh_.geometry();
   if (mm_) {
     mm_predictor(u, v, w, dt);
@@ -129,6 +130,7 @@ void Strength::predictor(const Field3& u, const Field3& v, const Field3& w, cons
         fy(i, j, k) = F[1];
         fz(i, j, k) = F[2];
       });
+  return &force_;
 }
 
 void Strength::corrector(const Field3& ub, const Field3& vb, const Field3& wb, const Field3& rho,

@@ -144,8 +144,8 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
     if (!data)
       u.fail("no material '" + lib + "' in the library; did you mean '" +
              nearest(lib, materials::material_names()) + "'?");
-    if (data->eos != "mie_gruneisen")
-      u.fail("'" + lib + "' has EOS " + data->eos +
+    if (data->eos != eos::kMieGruneisen)
+      u.fail("'" + lib + "' has EOS " + std::string(eos::eos_name(data->eos)) +
              "; the unreacted explosive needs a mie_gruneisen (solid) entry");
     if (spec.eos != "jwl" || !spec.params.count("E0"))
       u.fail(
@@ -209,13 +209,15 @@ void read_materials(const DeckNode& root, Scene& s) {
                                 nearest(lib, materials::material_names()) + "'?");
       if (m.has("eos")) m.child("eos").fail("a library material brings its own EOS; drop 'eos'");
       spec.library = lib;
-      spec.eos = data->eos;
+      spec.eos = eos::eos_name(data->eos);
       spec.rho0 = data->rho0;
       spec.citation = data->citation;
       for (const auto& [k, v] : data->params) spec.params[k] = v;
     } else {
       spec.eos = m.get_enum("eos", kEosKinds);
     }
+    for (int k = 0; k < eos::kEosKindCount; ++k)
+      if (spec.eos == eos::eos_name(eos::EosKind(k))) spec.eos_kind = eos::EosKind(k);
     spec.rho0 = m.get_real("rho0", 1e-12, 1e6, spec.rho0);
     if (spec.eos != "ideal_gas" && spec.eos != "stiffened_gas" && !(spec.rho0 > 0))
       m.fail("a " + spec.eos + " material needs a reference density 'rho0'");

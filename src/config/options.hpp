@@ -58,6 +58,12 @@ const std::string& name_of(E v) {
   return choices(v).front().first;  // (every value has a name)
 }
 
+// The command line's --restart value that asks for the newest checkpoint of the output
+// directory (any other value is a checkpoint's path).
+inline bool restart_from_newest(const std::string& restart) {
+  return restart == "latest";
+}
+
 // The numerics keys that apply to one kind of scene only (the rest apply to every scene): a
 // deck that sets one on the other kind is refused, naming the key (the hydro would ignore it).
 // (numerics.remap applies to both; its value unsplit to single-material scenes only.)

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "config/deck.hpp"
+#include "eos/eos.hpp"
 #include "hydro/numerics.hpp"
 #include "materials/geometry.hpp"
 #include "mesh/mesh.hpp"
@@ -47,8 +48,9 @@ struct MaterialSpec {
   std::string name;
   std::string library;  // library entry it starts from ("" for a custom material)
   std::string eos = "ideal_gas";
-  double rho0 = 0;                       // reference density (0: none given)
-  std::map<std::string, double> params;  // EOS parameters, library values overridden
+  mp::eos::EosKind eos_kind = mp::eos::kIdealGas;  // the same, typed
+  double rho0 = 0;                         // reference density (0: none given)
+  std::map<std::string, double> params;    // EOS parameters, library values overridden
   std::string citation;
   bool has_p_min = false;  // tension cutoff given (materials[].p_min, Mbar, <= 0)
   double p_min = 0;

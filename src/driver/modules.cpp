@@ -1,6 +1,7 @@
 // The scene's physics as the kernels take it (modules.hpp), and the run log's module lines.
 #include "driver/modules.hpp"
 
+#include <memory>
 #include <sstream>
 
 #include "config/options.hpp"
@@ -13,7 +14,7 @@ namespace mp {
 eos::Eos material_eos(const MaterialSpec& m, double void_density) {
   materials::MaterialData d;
   d.name = m.name;
-  d.eos = m.eos;
+  d.eos = m.eos_kind;
   d.rho0 = Real(m.rho0);
   for (const auto& [k, v] : m.params) d.params[k] = Real(v);
   eos::Eos eos = materials::make_eos(d);
@@ -76,26 +77,38 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
 }
 
 hydro::Options hydro_options(const Scene& s) {
-  hydro::Options opt(s.numerics, s.time);
+  return hydro::Options(s.numerics, s.time);
+}
+
+void add_modules(const Scene& s, const Mesh& mesh, hydro::Hydro& h) {
   if (s.materials.size() == 1) {
-    opt.strength = material_strength(s.materials[0]);
-    opt.strength_rho0 = Real(s.materials[0].rho0 > 0 ? s.materials[0].rho0 : 1.0);
-    opt.burn = material_burn(s.materials[0]);
-  } else {
-    // per material; the scene reader allows one explosive
-    opt.material_strength.n = int(s.materials.size());
-    for (std::size_t m = 0; m < s.materials.size(); ++m) {
-      const MaterialSpec& ms = s.materials[m];
-      opt.material_names.push_back(ms.name);
-      opt.material_strength.f[m] = material_strength(ms);
-      opt.material_strength.rho0[m] = Real(ms.rho0 > 0 ? ms.rho0 : 1.0);
-      if (ms.burn.on) {
-        opt.burn = material_burn(ms);
-        opt.burn.material = int(m);
-      }
+    const MaterialSpec& m = s.materials[0];
+    const strength::FlowStress f = material_strength(m);
+    if (f.kind != strength::kNoStrength)
+      h.add_module(std::make_unique<strength::Strength>(mesh, f, Real(m.rho0 > 0 ? m.rho0 : 1.0)));
+    const burn::BurnSetup b = material_burn(m);
+    if (b.on) h.add_module(std::make_unique<burn::Burn>(mesh, b));
+    return;
+  }
+  // per material: one stress set per material with strength, and the one explosive (the scene
+  // reader allows one)
+  strength::MaterialModels models;
+  models.n = int(s.materials.size());
+  std::vector<std::string> names;
+  burn::BurnSetup b;
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    const MaterialSpec& ms = s.materials[m];
+    names.push_back(ms.name);
+    models.f[m] = material_strength(ms);
+    models.rho0[m] = Real(ms.rho0 > 0 ? ms.rho0 : 1.0);
+    if (ms.burn.on) {
+      b = material_burn(ms);
+      b.material = int(m);
     }
   }
-  return opt;
+  if (models.carriers() != 0)
+    h.add_module(std::make_unique<strength::Strength>(mesh, models, h.materials(), names));
+  if (b.on) h.add_module(std::make_unique<burn::Burn>(mesh, b, h.materials()));
 }
 
 std::vector<std::string> Simulation::modules() const {

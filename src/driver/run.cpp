@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "config/options.hpp"
 #include "config/scene.hpp"
 #include "core/error.hpp"
 #include "driver/signals.hpp"
@@ -218,7 +219,7 @@ int run(const CommandLine& cl) {
       const std::string& dir = settings.output_dir;
       if (!cl.restart.empty()) {
         if (dir.empty()) throw InputError("--restart needs an output directory");
-        if (cl.restart == "latest") {
+        if (restart_from_newest(cl.restart)) {
           const auto all = list_checkpoints(dir, scene.output.basename);
           if (all.empty())
             throw InputError("--restart latest: no checkpoint " + scene.output.basename +

@@ -49,6 +49,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   halo_ = std::make_unique<Halo>(*mesh_);
   hydro_ =
       std::make_unique<hydro::Hydro>(*mesh_, *halo_, hydro_options(scene_), material_eoses(scene_));
+  add_modules(scene_, *mesh_, *hydro_);  // (the modules the scene needs)
 }
 
 Simulation::~Simulation() = default;
