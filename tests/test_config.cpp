@@ -362,7 +362,7 @@ TEST(Deck, OptionsOfTheOtherKindOfSceneAreRefused) {
   expect_holds(error_of(deck({{21, kSecondGas}}), {"numerics.geometry=fixed"}),
                {"--set numerics.geometry=fixed", "applies to single-material scenes only"});
   // options of every scene stay accepted on both
-  for (const char* line : {"  advection: first", "  samples: 2", "  void_density: 1e-6"}) {
+  for (const char* line : {"  ke_fix: false", "  samples: 2", "  void_density: 1e-6"}) {
     EXPECT_NO_THROW(mp::read_scene(mp::Deck::parse(deck({{16, line}}), "deck.yaml"))) << line;
     EXPECT_NO_THROW(
         mp::read_scene(mp::Deck::parse(deck({{16, line}, {21, kSecondGas}}), "deck.yaml")))
