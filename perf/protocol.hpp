@@ -80,9 +80,11 @@ inline std::string stripes_deck(int nmat, int width, const std::vector<int>& cel
     << "]\n  lo: [0, 0, 0]\n  hi: [" << lx << ", " << ly << ", " << lz << "]\n"
     << "boundaries: {x: periodic, y: periodic, z: periodic}\n"
     << "time: {end: 1.0e9, cfl: 0.5, dt_initial: 1.0e-3}\n"
-    // (geometry: fixed, the multi-material cycle's -- the mid-step geometry is single-material
-    // only -- so that the one-material reference does the same work per cell)
-    << "numerics: {layout: " << layout << ", samples: 2, geometry: fixed}\nmaterials:\n";
+    // (the one-material reference runs geometry: fixed, the multi-material cycle's -- the
+    // mid-step geometry is single-material only -- so that it does the same work per cell; the
+    // layout is a multi-material key: each kind of scene refuses the other's)
+    << "numerics: {" << (nmat > 1 ? std::string("layout: ") + layout + ", " : std::string())
+    << "samples: 2" << (nmat > 1 ? "" : ", geometry: fixed") << "}\nmaterials:\n";
   for (int m = 0; m < nmat; ++m)
     d << "  - {name: gas" << m << ", eos: ideal_gas, gamma: " << 1.3 + 0.02 * m
       << (m < strength ? ", strength: {model: elastic_plastic, shear_modulus: 0.5, yield: 0.05}"
