@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
-#include "hydro/per_mass.hpp"
+#include "remap/per_mass.hpp"
 
 namespace mp::burn {
 
@@ -191,7 +191,7 @@ void Burn::update(const Field3& rho, double dt) {
 
 void Burn::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
                  const Field3& rho, const Field3& pre, int order) {
-  hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
+  mp::remap::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
 }
 
 void Burn::after_eos(const Field3& /*rho*/, const Field3& /*e*/, const Field3& p,

@@ -4,7 +4,7 @@
 
 #include "core/error.hpp"
 
-#include "hydro/per_mass.hpp"
+#include "remap/per_mass.hpp"
 #include "materials/rebuild.hpp"
 #include "strength/halo_parity.hpp"
 
@@ -15,7 +15,7 @@ void Strength::remap(int q, const std::array<bool, 3>& axes, const std::array<Fi
   // the values before the step go to the set's half-step deviator (free between the corrector
   // and the next predictor, which writes it before anything reads it) and the scratch
   const StressSet& st = sets_[q];
-  hydro::remap_per_mass(mesh_, axes, mass_flux, rho, pre,
+  mp::remap::remap_per_mass(mesh_, axes, mass_flux, rho, pre,
                         {st.s[0], st.s[1], st.s[2], st.s[3], st.s[4], st.s[5], st.eps_p},
                         {st.s_half[0], st.s_half[1], st.s_half[2], st.s_half[3], st.s_half[4],
                          st.s_half[5], scratch_},
@@ -76,7 +76,7 @@ void remap_pool(const Mesh& mesh, const PoolRemap& t, const mat::CompactDev& dev
           if (at == -1) continue;
           const SetOlds old{t.old, q, n};
           Real out[NX];
-          hydro::per_mass_update<NX, Axis>(i, j, k, ax, ay, az, t.flux[q], t.flux[q], t.flux[q],
+          mp::remap::per_mass_update<NX, Axis>(i, j, k, ax, ay, az, t.flux[q], t.flux[q], t.flux[q],
                                            t.rho[q], pre, old, order, out);
           for (int c = 0; c < NX; ++c) {
             if (at == -2)

@@ -1,10 +1,10 @@
 // Remap of per-mass cell quantities (per_mass.hpp).
-#include "hydro/per_mass.hpp"
+#include "remap/per_mass.hpp"
 
 #include "core/axis.hpp"
 #include "core/error.hpp"
 
-namespace mp::hydro {
+namespace mp::remap {
 
 namespace {
 struct Fields {
@@ -67,4 +67,4 @@ void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
   launch[n - 1](mesh, axes, mass_flux, rho, pre, phi, old, order);
 }
 
-}  // namespace mp::hydro
+}  // namespace mp::remap

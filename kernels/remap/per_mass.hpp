@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/math.hpp"
-#include "hydro/point.hpp"
+#include "remap/advect.hpp"
 #include "mesh/mesh.hpp"
 
-namespace mp::hydro {
+namespace mp::remap {
 
 // The most quantities one launch carries (the strength module's 7).
 inline constexpr int kPerMassMax = 7;
@@ -89,4 +89,4 @@ void remap_per_mass(const Mesh& mesh, const std::array<bool, 3>& axes,
                     const std::vector<Field3>& fields, const std::vector<Field3>& scratch,
                     int order);
 
-}  // namespace mp::hydro
+}  // namespace mp::remap
