@@ -32,12 +32,15 @@ KOKKOS_INLINE_FUNCTION auto column(const View& f, int i, int j) {
 
 // A view's data as a plain pointer and strides, indexed (i, j, k) like the view: for the point
 // functions a column loop calls (templated on the field type). Made inside the column's body, it
-// is a local value GCC keeps in registers, so the loop's loads are plain offsets from it.
+// is a local value GCC keeps in registers, so the loop's loads are plain offsets from it. Its
+// accessor is forced inline: after kernels/hydro/lagrange.cpp was split in three, GCC emitted it
+// out of line there and lagrange::acceleration ran 1.5x slower (perf/results/
+// seam_perf_check_side_by_side.md).
 template <class T, bool Unit>
 struct Local3 {
   T* p;
   long si, sj, sk;
-  KOKKOS_INLINE_FUNCTION T& operator()(int i, int j, int k) const {
+  KOKKOS_FORCEINLINE_FUNCTION T& operator()(int i, int j, int k) const {
     if constexpr (Unit)
       return p[i * si + j * sj + k];
     else
