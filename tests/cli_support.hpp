@@ -71,7 +71,9 @@ inline std::vector<std::string> child_env() {
 // A child process running `argv` in `dir`, its stdout and stderr going to files there.
 class Child {
  public:
-  Child(const fs::path& dir, const std::vector<std::string>& argv, const std::string& tag = "")
+  // `extra_env`: NAME=value entries added to the clean environment.
+  Child(const fs::path& dir, const std::vector<std::string>& argv, const std::string& tag = "",
+        const std::vector<std::string>& extra_env = {})
       : dir_(dir), out_(dir / (".stdout" + tag)), err_(dir / (".stderr" + tag)) {
     pid_ = fork();
     if (pid_ == 0) {
@@ -84,6 +86,7 @@ class Child {
       dup2(e, 2);
       setpgid(0, 0);  // its own process group: a signal to the group reaches mpiexec's children
       std::vector<std::string> env = child_env();
+      env.insert(env.end(), extra_env.begin(), extra_env.end());
       std::vector<char*> a, en;
       for (const auto& s : argv) a.push_back(const_cast<char*>(s.c_str()));
       a.push_back(nullptr);

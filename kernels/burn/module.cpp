@@ -204,7 +204,13 @@ void Burn::after_eos(const Field3& /*rho*/, const Field3& /*e*/, const Field3& p
 std::vector<FieldSpec> Burn::fields(unsigned /*use*/) const {
   const auto C = Centering::Cell;
   return {{"burn_fraction", C, f_, kDump | kCheckpoint | kHalo, "burn_fraction", {{1, 1, 1}}, ""},
-          {"lighting_time", C, t_light_, kDump, "lighting_time", {{1, 1, 1}}, "us"}};
+          {"lighting_time",
+           C,
+           t_light_,
+           kDump | (programmed_ ? unsigned(kCheckpoint) : 0u),
+           "lighting_time",
+           {{1, 1, 1}},
+           "us"}};
 }
 
 }  // namespace mp::burn

@@ -67,7 +67,8 @@ class Burn : public hydro::Module {
   void remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& mass_flux,
              const Field3& rho, const Field3& pre, int order);
   // The module seam (hydro/module.hpp). Fields: the burn fraction (dumped, checkpointed, in the
-  // cell halo) and the lighting times (dumped; rebuilt from the deck and the materials).
+  // cell halo) and the lighting times (dumped, and checkpointed in programmed burn: they are built
+  // from the materials as painted at the start, which a restart no longer has).
   const char* name() const override { return "burn"; }
   // The explosive's EOS closure for the hydro's EOS kernels; the pressure scaled by F where
   // they do not apply it (a single-material explosive without an unreacted EOS), c raised to D
@@ -87,7 +88,8 @@ class Burn : public hydro::Module {
   }
   std::vector<Field3> carried_fields(int) const override { return {f_}; }
   std::vector<FieldSpec> fields(unsigned use) const override;
-  // Lighting times from the explosive's volume fraction (multi-material scenes).
+  // Lighting times from the explosive's volume fraction as painted (multi-material scenes; a
+  // restart reads them from the checkpoint instead).
   void materials_placed() override { light(); }
 
   const Field3& fraction() const { return f_; }

@@ -90,11 +90,14 @@ class Module {
   // field the module keeps in the compact pool is gathered into a cell field when dumped or
   // checkpointed, and is not in the cell halo (the module exchanges the pool itself).
   virtual std::vector<FieldSpec> fields(unsigned use) const = 0;
-  // A multi-material scene's materials are in place (painted, or read from a checkpoint): what
-  // the module derives from them (the burn module's lighting times).
+  // A multi-material scene's materials are painted from the deck (not on a restart): what the
+  // module derives from the initial materials (the burn module's lighting times). What it
+  // derives from them must be a kCheckpoint field, since a restart does not call this.
   virtual void materials_placed() {}
-  // A restart: the checkpoint's values were read into the views fields(kCheckpoint) gave, in
-  // that order, and the materials are in place.
+  // A restart: the checkpoint's values were read into `state`, the module's own
+  // fields(kCheckpoint) in that order, and the materials are in place. Every field not flagged
+  // kCheckpoint is either derived each cycle or built from the deck alone (the module's
+  // constructor).
   virtual void restore(const std::vector<FieldSpec>& state) { (void)state; }
   // A restart: the run's clock resumes at t.
   virtual void set_time(double t) { (void)t; }

@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/profiling.hpp"
 #include "driver/modules.hpp"
+#include "driver/signals.hpp"
 #include "driver/simulation.hpp"
 #include "io/checkpoint.hpp"
 #include "io/h5_util.hpp"
@@ -141,7 +142,8 @@ std::string Simulation::checkpoint_meta() const {
 std::string Simulation::write_checkpoint_now() {
   ProfileRegion region("output::checkpoint");
   const std::string path = checkpoint_path(settings_.output_dir, scene_.output.basename, cycle_);
-  write_checkpoint(*mesh_, path, checkpoint_fields(), checkpoint_meta());
+  write_checkpoint(*mesh_, path, checkpoint_fields(), checkpoint_meta(),
+                   [&] { signals::kill_point("checkpoint", cycle_); });
   // Keep the newest checkpoint_keep complete checkpoints.
   if (mesh_->rank() == 0) {
     auto all = list_checkpoints(settings_.output_dir, scene_.output.basename);
@@ -153,6 +155,7 @@ std::string Simulation::write_checkpoint_now() {
 }
 
 void Simulation::restart(const std::string& path) {
+  auto t0 = std::chrono::steady_clock::now();
   nlohmann::json meta;
   const std::string text = read_checkpoint_meta(path, mesh_->comm());
   try {
@@ -254,8 +257,27 @@ void Simulation::restart(const std::string& path) {
       per.push_back(mesh_->new_field(std::string("restart_") + q, Centering::Cell));
       fields.push_back({q + std::to_string(m), Centering::Cell, per.back()});
     }
-  const std::vector<FieldSpec> state = hydro_->module_fields(kCheckpoint);
-  for (const OutputField& o : mp::checkpoint_fields(state)) fields.push_back(o);
+  // each module's checkpointed fields (the views the file is read into, handed back to it)
+  std::vector<std::vector<FieldSpec>> state;
+  for (const hydro::Module* m : hydro_->modules()) {
+    state.emplace_back();
+    for (const FieldSpec& f : m->fields(kCheckpoint))
+      if (f.use & kCheckpoint) state.back().push_back(f);
+    for (const OutputField& o : mp::checkpoint_fields(state.back())) fields.push_back(o);
+  }
+  // A field this build checkpoints and the file lacks (a checkpoint from before lighting times
+  // were checkpointed, 2026-12-06) cannot be restored exactly: refuse, naming it.
+  std::vector<std::string> names;
+  for (const OutputField& o : fields) names.push_back(o.name);
+  const std::vector<std::string> missing = checkpoint_missing(path, names, mesh_->comm());
+  if (!missing.empty()) {
+    std::string list;
+    for (const std::string& m : missing) list += (list.empty() ? "'" : ", '") + m + "'";
+    throw InputError("checkpoint " + path + " holds no " + list +
+                     ", which this build checkpoints and cannot rebuild exactly from the "
+                     "checkpoint's state (a checkpoint written by an older build): restart it "
+                     "with the build that wrote it, or run the deck from the start");
+  }
   read_checkpoint_fields(*mesh_, path, fields);
   if (mm) {
     const int ex = mesh_->extent(Centering::Cell, 0), ey = mesh_->extent(Centering::Cell, 1),
@@ -280,11 +302,6 @@ void Simulation::restart(const std::string& path) {
           });
     }
     mm->assign("restart::assign", src);
-    // stress sets kept in the compact pool take their values once the pool holds the materials
-    for (hydro::Module* m : hydro_->modules()) {
-      m->restore(state);
-      m->materials_placed();
-    }
     auto rho = s.rho, e = s.e;
     Kokkos::parallel_for(
         "restart::cells", mesh_->cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
@@ -292,7 +309,11 @@ void Simulation::restart(const std::string& path) {
           e(i, j, k) = ce(i, j, k);
         });
   }
+  // the modules' restored state (stress sets kept in the compact pool take their values now
+  // that the pool holds the materials); nothing is rebuilt from the restarted materials
+  for (std::size_t n = 0; n < state.size(); ++n) hydro_->modules()[n]->restore(state[n]);
   hydro_->prepare();
+  phase("checkpoint read", t0);
 
   try {
     t_ = meta.at("time").get<double>();

@@ -255,6 +255,7 @@ int run(const CommandLine& cl) {
       if (len > 0) MPI_Bcast(&restart_path[0], len, MPI_CHAR, 0, MPI_COMM_WORLD);
     }
 
+    signals::check_kill_hook();
     Simulation sim(scene, MPI_COMM_WORLD, settings);
     log_line("minipagosa " + std::string(MINIPAGOSA_VERSION) + ": scene '" + scene.name + "' (" +
              scene.file + ")");
@@ -268,6 +269,7 @@ int run(const CommandLine& cl) {
       sim.initialize();
     else
       sim.restart(restart_path);
+    log_line("  set-up: " + sim.setup_text());
     log_line("  output: " + settings.output_dir);
     signals::install();
     const RunResult r = sim.run();

@@ -227,6 +227,7 @@ struct MixedDeposit {
 }  // namespace
 
 void Simulation::initialize() {
+  auto t0 = std::chrono::steady_clock::now();
   std::vector<RegionDev> regs;
   const std::vector<eos::Eos> eos = material_eoses(scene_);
   for (const auto& r : scene_.regions) {
@@ -273,7 +274,11 @@ void Simulation::initialize() {
         {ng, ng, ng},
         {ng + mesh_->owned_cells(0), ng + mesh_->owned_cells(1), ng + mesh_->owned_cells(2)}};
     mm->assign("init::materials", src);
-    for (hydro::Module* m : hydro_->modules()) m->materials_placed();  // (lighting times)
+    phase("painting", t0);
+    for (hydro::Module* m : hydro_->modules()) {
+      m->materials_placed();  // (lighting times)
+      phase(std::string(m->name()) + " set-up", t0);
+    }
   }
   if (!mm)
     Kokkos::parallel_for(
@@ -287,17 +292,27 @@ void Simulation::initialize() {
           rho(i, j, k) = Real(rho_c);
           e(i, j, k) = Real(e_c);
         });
+  if (!mm) phase("painting", t0);
+  // Every region at rest (no velocity, not radial): every node's velocity is +0 under both
+  // rules below, so the sampling (8 samples^3 points per node, most of a large scene's set-up)
+  // is skipped; the fields are zero from their allocation.
+  bool at_rest = true;
+  for (const RegionDev& r : regs)
+    for (int a = 0; a < 3; ++a)
+      at_rest = at_rest && !r.radial && r.vel[a] == 0 && !std::signbit(r.vel[a]);
   const int node_samples = scene_.numerics.samples;
-  Kokkos::parallel_for(
-      "init::nodes", mesh_->nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        const double x = g.node_coord(0, i), y = g.node_coord(1, j), z = g.node_coord(2, k);
-        double vel[3];
-        if (!dual_cell_velocity(dregs, nreg, x, y, z, g.dx, node_samples, vel))
-          point_velocity(dregs, nreg, x, y, z, vel);
-        u(i, j, k) = Real(vel[0]);
-        v(i, j, k) = Real(vel[1]);
-        w(i, j, k) = Real(vel[2]);
-      });
+  if (!at_rest)
+    Kokkos::parallel_for(
+        "init::nodes", mesh_->nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          const double x = g.node_coord(0, i), y = g.node_coord(1, j), z = g.node_coord(2, k);
+          double vel[3];
+          if (!dual_cell_velocity(dregs, nreg, x, y, z, g.dx, node_samples, vel))
+            point_velocity(dregs, nreg, x, y, z, vel);
+          u(i, j, k) = Real(vel[0]);
+          v(i, j, k) = Real(vel[1]);
+          w(i, j, k) = Real(vel[2]);
+        });
+  phase(at_rest ? "node velocities (all regions at rest)" : "node velocities", t0);
 
   // Energy deposits (point blasts): the total is split evenly over the region's cells.
   for (int n = 0; n < nreg; ++n) {
@@ -335,6 +350,7 @@ void Simulation::initialize() {
         });
   }
   hydro_->prepare();
+  phase("equation of state", t0);
 }
 
 }  // namespace mp

@@ -3,7 +3,11 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
+#include <string>
+
+#include "core/error.hpp"
 
 namespace mp::signals {
 
@@ -45,6 +49,44 @@ int requested() {
 
 void reset() {
   g_signal = 0;
+}
+
+namespace {
+// The hook's point and cycle; false when unset. Throws InputError on a malformed value.
+bool kill_hook(std::string& point, long& cycle) {
+  const char* v = std::getenv("MINIPAGOSA_TEST_KILL");
+  if (!v || !*v) return false;
+  const std::string s = v;
+  const auto colon = s.find(':');
+  char* end = nullptr;
+  point = s.substr(0, colon);
+  cycle = colon == std::string::npos ? -1 : std::strtol(s.c_str() + colon + 1, &end, 10);
+  if ((point != "cycle" && point != "checkpoint") || cycle < 0 || !end || *end)
+    throw InputError("MINIPAGOSA_TEST_KILL='" + s +
+                     "': expected cycle:<N> or checkpoint:<N> (a test hook: leave it unset)");
+  return true;
+}
+}  // namespace
+
+void check_kill_hook() {
+  std::string point;
+  long cycle = 0;
+  kill_hook(point, cycle);
+}
+
+void kill_point(const char* point, long cycle) {
+  static const struct Hook {
+    bool on = false;
+    std::string point;
+    long cycle = -1;
+    Hook() {
+      try {
+        on = kill_hook(point, cycle);
+      } catch (const InputError&) {
+      }
+    }
+  } hook;
+  if (hook.on && cycle == hook.cycle && hook.point == point) raise(SIGKILL);
 }
 
 }  // namespace mp::signals

@@ -45,11 +45,35 @@ void make_dirs(const std::string& dir) {
 
 Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
     : scene_(scene), settings_(std::move(settings)) {
+  auto t0 = std::chrono::steady_clock::now();
   mesh_ = std::make_unique<Mesh>(scene_.mesh, comm);
   halo_ = std::make_unique<Halo>(*mesh_);
   hydro_ =
       std::make_unique<hydro::Hydro>(*mesh_, *halo_, hydro_options(scene_), material_eoses(scene_));
   add_modules(scene_, *mesh_, *hydro_);  // (the modules the scene needs)
+  phase("allocation", t0);
+}
+
+void Simulation::phase(const std::string& name, std::chrono::steady_clock::time_point& since) {
+  Kokkos::fence();
+  const auto now = std::chrono::steady_clock::now();
+  double s = std::chrono::duration<double>(now - since).count();
+  MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &s, 1, MPI_DOUBLE, MPI_MAX, mesh_->comm()));
+  setup_.emplace_back(name, s);
+  since = std::chrono::steady_clock::now();
+}
+
+std::string Simulation::setup_text() const {
+  double total = 0;
+  std::string parts;
+  char buf[96];
+  for (const auto& [name, s] : setup_) {
+    total += s;
+    std::snprintf(buf, sizeof buf, "%s%s %.2g s", parts.empty() ? "" : ", ", name.c_str(), s);
+    parts += buf;
+  }
+  std::snprintf(buf, sizeof buf, "%.3g s (", total);
+  return buf + parts + ")";
 }
 
 Simulation::~Simulation() = default;
@@ -187,6 +211,7 @@ RunResult Simulation::run() {
         last_checkpoint = wall();
         if (!settings_.quiet) log_line("  checkpoint " + r.checkpoints.back());
       }
+      signals::kill_point("cycle", cycle_);
     }
   } catch (const CollectiveError& e) {
     output_failed(r, e.what());

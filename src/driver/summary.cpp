@@ -87,6 +87,11 @@ std::string Simulation::summary_json(const RunResult& r) const {
   js["time"] = num(r.time, "time");
   js["end_time"] = scene_.time.end;
   js["wall_seconds"] = r.wall;
+  {
+    nlohmann::ordered_json setup = nlohmann::ordered_json::object();
+    for (const auto& [name, sec] : setup_) setup[name] = sec;
+    js["setup_seconds"] = setup;
+  }
   js["cell_cycles_per_second"] = r.wall > 0 ? cc / r.wall : 0.0;
   js["modules"] = modules();
   js["start"] = totals(r.start, "start");

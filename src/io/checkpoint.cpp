@@ -18,7 +18,8 @@ std::string checkpoint_path(const std::string& dir, const std::string& basename,
 }
 
 void write_checkpoint(const Mesh& mesh, const std::string& path,
-                      const std::vector<OutputField>& fields, const std::string& meta_json) {
+                      const std::vector<OutputField>& fields, const std::string& meta_json,
+                      const std::function<void()>& before_rename) {
   const MPI_Comm comm = mesh.comm();
   const std::string tmp = path + ".tmp";
   HDF5_CHECK(H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr));
@@ -39,6 +40,7 @@ void write_checkpoint(const Mesh& mesh, const std::string& path,
       HDF5_CHECK(fapl.close());
     });
     MPI_CHECK(MPI_Barrier(comm));
+    if (before_rename) before_rename();
     h5::on_root(comm, [&] { h5::rename_or_throw(tmp, path); });
   } catch (const std::exception& e) {
     int rank = 0;
@@ -84,6 +86,34 @@ void read_checkpoint_fields(const Mesh& mesh, const std::string& path,
   } catch (const std::exception& e) {
     throw CollectiveError("cannot read checkpoint " + path + ": " + e.what());
   }
+}
+
+std::vector<std::string> checkpoint_missing(const std::string& path,
+                                            const std::vector<std::string>& names, MPI_Comm comm) {
+  HDF5_CHECK(H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr));
+  std::string joined;  // the missing names, each followed by '\n'
+  try {
+    h5::on_root(comm, [&] {
+      h5::Handle file;
+      HDF5_CHECK(file.reset(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose));
+      for (const std::string& n : names) {
+        const htri_t there = H5Lexists(file.get(), n.c_str(), H5P_DEFAULT);
+        HDF5_CHECK(there);
+        if (there == 0) joined += n + '\n';
+      }
+      HDF5_CHECK(file.close());
+    });
+  } catch (const std::exception& e) {
+    throw CollectiveError("cannot read checkpoint " + path + ": " + e.what());
+  }
+  int len = static_cast<int>(joined.size());
+  MPI_CHECK(MPI_Bcast(&len, 1, MPI_INT, 0, comm));
+  joined.resize(static_cast<size_t>(len));
+  if (len > 0) MPI_CHECK(MPI_Bcast(&joined[0], len, MPI_CHAR, 0, comm));
+  std::vector<std::string> out;
+  for (std::size_t a = 0, b; (b = joined.find('\n', a)) != std::string::npos; a = b + 1)
+    out.push_back(joined.substr(a, b - a));
+  return out;
 }
 
 std::vector<std::pair<long, std::string>> list_checkpoints(const std::string& dir,
