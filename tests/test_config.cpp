@@ -458,7 +458,7 @@ TEST(Deck, ShippedDecksParse) {
   }
   closedir(d);
   std::sort(files.begin(), files.end());
-  // every shipped deck, by name: a deck deleted or renamed fails here (the README lists them)
+  // every shipped deck, by name: a deck deleted or renamed fails here (the README's scenes table lists them)
   const std::vector<std::string> expected = {
       "charge_3d",    "copper_wall", "elastic_wave", "leblanc",
       "mader",        "noh",         "noh_planar",   "perforator",

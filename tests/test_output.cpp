@@ -312,7 +312,7 @@ TEST_F(Output, SigtermStopsAfterTheCycleAndTheRestartFinishesBitwiseEqual) {
 // Until 2026-12-01 the signal went to mpiexec alone. Open MPI 4.1's mpiexec does not forward
 // SIGTERM: it aborts the job, sending the ranks SIGTERM and then killing them, and whether they
 // had written their checkpoint and summary by then was a race (on the quiet 2-core machine
-// they had not, 7 times in 8; a CI run kept the files but lost the closing line). README says
+// they had not, 7 times in 8; a CI run kept the files but lost the closing line). docs/running.md says
 // to signal the ranks.
 // The run is long (t = 8, 488 cycles) so that it is still running when the signal comes.
 // The ranks: the processes whose parent is mpiexec (Open MPI launches them itself on one node).

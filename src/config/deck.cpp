@@ -46,12 +46,64 @@ std::string join(const std::vector<std::string>& v) {
   for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + v[i];
   return s;
 }
-std::string fmt(double v) {
+template <class T>
+std::string fmt(T v) {
   std::ostringstream os;
   os << v;
   return os.str();
 }
 }  // namespace
+
+KeyCatalogue*& KeyCatalogue::active() {
+  static KeyCatalogue* catalogue = nullptr;
+  return catalogue;
+}
+
+namespace {
+// "materials.0.burn.detonators.1.type" -> "materials[].burn.detonators[].type"
+std::string catalogue_path(const std::string& path) {
+  std::string out, part;
+  std::stringstream ss(path);
+  while (std::getline(ss, part, '.')) {
+    if (!part.empty() && std::all_of(part.begin(), part.end(), ::isdigit)) {
+      out += "[]";
+    } else {
+      out += (out.empty() ? "" : ".") + part;
+    }
+  }
+  return out;
+}
+std::string range_text(double lo, double hi) {
+  const bool lo_any = lo <= -1e300, hi_any = hi >= 1e300;
+  if (lo_any && hi_any) return "any";
+  if (hi_any) return ">= " + fmt(lo);
+  if (lo_any) return "<= " + fmt(hi);
+  return "[" + fmt(lo) + ", " + fmt(hi) + "]";
+}
+std::string range_text(long lo, long hi) {
+  return "[" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+}
+template <class T>
+std::string triple(const std::array<T, 3>& v) {
+  return "[" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + "]";
+}
+}  // namespace
+
+void DeckNode::note(const std::string& key, const char* type, const std::string& range,
+                    const std::string* fallback) const {
+  KeyCatalogue* c = KeyCatalogue::active();
+  if (!c) return;
+  KeyInfo& k = c->keys[catalogue_path(path_.empty() ? key : path_ + "." + key)];
+  k.type = type;
+  k.range = range;
+  if (fallback) k.defaults.insert(*fallback);
+}
+
+std::string DeckNode::choice_list(const std::vector<std::string>& names) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i) s += (i ? " | " : "") + names[i];
+  return s;
+}
 
 std::string DeckNode::where() const {
   // A value given on the command line is reported as such, not by a line of the file.
@@ -82,6 +134,9 @@ DeckNode DeckNode::sub(const YAML::Node& n, const std::string& key) const {
 }
 
 void DeckNode::expect_keys(const std::vector<std::string>& allowed) const {
+  if (KeyCatalogue* c = KeyCatalogue::active())
+    for (const auto& key : allowed)
+      c->keys[catalogue_path(path_.empty() ? key : path_ + "." + key)];
   if (!node_.IsMap()) fail("expected a map with keys from: " + join(allowed));
   for (auto it = node_.begin(); it != node_.end(); ++it) {
     const std::string key = it->first.as<std::string>();
@@ -92,14 +147,20 @@ void DeckNode::expect_keys(const std::vector<std::string>& allowed) const {
   }
 }
 
-bool DeckNode::has(const std::string& key) const {
+bool DeckNode::present(const std::string& key) const {
   return node_.IsMap() && node_[key] && !node_[key].IsNull();
+}
+
+bool DeckNode::has(const std::string& key) const {
+  if (KeyCatalogue* c = KeyCatalogue::active())
+    c->keys[catalogue_path(path_.empty() ? key : path_ + "." + key)].probed = true;
+  return present(key);
 }
 
 DeckNode DeckNode::child(const std::string& key) const {
   if (!node_.IsMap()) fail("expected a map holding '" + key + "'");
   // Reported at the enclosing map, under the missing key's own full path.
-  if (!has(key)) sub(node_, key).fail("missing required key '" + key + "'");
+  if (!present(key)) sub(node_, key).fail("missing required key '" + key + "'");
   return sub(node_[key], key);
 }
 
@@ -150,19 +211,27 @@ std::string DeckNode::as_string() const {
 }
 
 double DeckNode::get_real(const std::string& key, double lo, double hi) const {
+  note(key, "real", range_text(lo, hi), nullptr);
   return child(key).as_real(lo, hi);
 }
 double DeckNode::get_real(const std::string& key, double lo, double hi, double fallback) const {
-  return has(key) ? get_real(key, lo, hi) : fallback;
+  const std::string d = fmt(fallback);
+  note(key, "real", range_text(lo, hi), &d);
+  return present(key) ? child(key).as_real(lo, hi) : fallback;
 }
 long DeckNode::get_int(const std::string& key, long lo, long hi) const {
+  note(key, "integer", range_text(lo, hi), nullptr);
   return child(key).as_int(lo, hi);
 }
 long DeckNode::get_int(const std::string& key, long lo, long hi, long fallback) const {
-  return has(key) ? get_int(key, lo, hi) : fallback;
+  const std::string d = std::to_string(fallback);
+  note(key, "integer", range_text(lo, hi), &d);
+  return present(key) ? child(key).as_int(lo, hi) : fallback;
 }
 bool DeckNode::get_bool(const std::string& key, bool fallback) const {
-  if (!has(key)) return fallback;
+  const std::string d = fallback ? "true" : "false";
+  note(key, "bool", "true | false", &d);
+  if (!present(key)) return fallback;
   const DeckNode n = child(key);
   if (!n.node_.IsScalar()) n.fail("expected true or false");
   try {
@@ -172,13 +241,16 @@ bool DeckNode::get_bool(const std::string& key, bool fallback) const {
   }
 }
 std::string DeckNode::get_string(const std::string& key) const {
+  note(key, "string", "", nullptr);
   return child(key).as_string();
 }
 std::string DeckNode::get_string(const std::string& key, const std::string& fallback) const {
-  return has(key) ? get_string(key) : fallback;
+  note(key, "string", "", &fallback);
+  return present(key) ? child(key).as_string() : fallback;
 }
 std::string DeckNode::get_enum(const std::string& key,
                                const std::vector<std::string>& allowed) const {
+  note(key, "choice", choice_list(allowed), nullptr);
   const DeckNode n = child(key);
   const std::string v = n.as_string();
   if (std::find(allowed.begin(), allowed.end(), v) == allowed.end())
@@ -188,18 +260,23 @@ std::string DeckNode::get_enum(const std::string& key,
 }
 std::string DeckNode::get_enum(const std::string& key, const std::vector<std::string>& allowed,
                                const std::string& fallback) const {
-  return has(key) ? get_enum(key, allowed) : fallback;
+  note(key, "choice", choice_list(allowed), &fallback);
+  return present(key) ? get_enum(key, allowed) : fallback;
 }
 std::array<double, 3> DeckNode::get_real3(const std::string& key, double lo, double hi) const {
+  note(key, "real[3]", range_text(lo, hi), nullptr);
   const DeckNode n = child(key);
   if (!n.is_sequence() || n.size() != 3) n.fail("expected a list of 3 numbers [x, y, z]");
   return {n[0].as_real(lo, hi), n[1].as_real(lo, hi), n[2].as_real(lo, hi)};
 }
 std::array<double, 3> DeckNode::get_real3(const std::string& key, double lo, double hi,
                                           std::array<double, 3> fallback) const {
-  return has(key) ? get_real3(key, lo, hi) : fallback;
+  const std::string d = triple(fallback);
+  note(key, "real[3]", range_text(lo, hi), &d);
+  return present(key) ? get_real3(key, lo, hi) : fallback;
 }
 std::array<int, 3> DeckNode::get_int3(const std::string& key, long lo, long hi) const {
+  note(key, "integer[3]", range_text(lo, hi), nullptr);
   const DeckNode n = child(key);
   if (!n.is_sequence() || n.size() != 3) n.fail("expected a list of 3 integers [x, y, z]");
   return {static_cast<int>(n[0].as_int(lo, hi)), static_cast<int>(n[1].as_int(lo, hi)),
@@ -207,7 +284,9 @@ std::array<int, 3> DeckNode::get_int3(const std::string& key, long lo, long hi) 
 }
 std::array<int, 3> DeckNode::get_int3(const std::string& key, long lo, long hi,
                                       std::array<int, 3> fallback) const {
-  return has(key) ? get_int3(key, lo, hi) : fallback;
+  const std::string d = triple(fallback);
+  note(key, "integer[3]", range_text(lo, hi), &d);
+  return present(key) ? get_int3(key, lo, hi) : fallback;
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +16,22 @@
 #include "core/error.hpp"
 
 namespace mp {
+
+// What the reader accepts, recorded while it reads (config/catalogue.hpp: minipagosa
+// --list-keys writes docs/options.md from it). Keys are dotted paths with list indices as
+// "[]" (materials[].burn.detonators[].type); a key appears once a map lists it in
+// expect_keys, and gets its type, range and default when a get_* reads it.
+struct KeyInfo {
+  std::string type;                // real, integer, bool, string, choice, real[3], integer[3]
+  std::string range;               // "[lo, hi]", ">= lo", "any", or the choices "a | b"
+  std::set<std::string> defaults;  // the fallbacks seen (none: required or optional)
+  bool probed = false;             // the reader asked whether it is there (optional)
+};
+struct KeyCatalogue {
+  std::map<std::string, KeyInfo> keys;
+  // The catalogue a DeckNode records into; nullptr (the default): nothing is recorded.
+  static KeyCatalogue*& active();
+};
 
 class DeckNode {
  public:
@@ -33,7 +50,7 @@ class DeckNode {
 
   // Rejects keys not in `allowed` (with the nearest allowed key suggested); the node must be a map.
   void expect_keys(const std::vector<std::string>& allowed) const;
-  bool has(const std::string& key) const;
+  bool has(const std::string& key) const;        // (for the catalogue: the key is optional)
   DeckNode child(const std::string& key) const;  // required
   DeckNode operator[](std::size_t index) const;  // sequence element
   std::vector<DeckNode> items() const;           // sequence elements (must be a sequence)
@@ -54,9 +71,14 @@ class DeckNode {
   template <class E>
   E get_choice(const std::string& key, const std::vector<std::pair<std::string, E>>& choices,
                E fallback) const {
-    if (!has(key)) return fallback;
     std::vector<std::string> names;
-    for (const auto& c : choices) names.push_back(c.first);
+    std::string fallback_name;
+    for (const auto& c : choices) {
+      names.push_back(c.first);
+      if (c.second == fallback) fallback_name = c.first;
+    }
+    note(key, "choice", choice_list(names), &fallback_name);
+    if (!present(key)) return fallback;
     const std::string v = get_enum(key, names);
     for (const auto& c : choices)
       if (c.first == v) return c.second;
@@ -80,6 +102,11 @@ class DeckNode {
 
  private:
   DeckNode sub(const YAML::Node& n, const std::string& key) const;
+  bool present(const std::string& key) const;
+  // Records `key` (under this node) in the active catalogue, if any; `fallback` null: no default.
+  void note(const std::string& key, const char* type, const std::string& range,
+            const std::string* fallback) const;
+  static std::string choice_list(const std::vector<std::string>& names);
   YAML::Node node_;
   std::string path_;
   std::shared_ptr<const std::string> file_;

@@ -45,7 +45,7 @@ const ParamRange* param_range(const std::string& eos, const std::string& key) {
   return it == ranges.end() ? nullptr : &it->second;
 }
 
-// EOS parameter names by kind (units: README, "Units"; kernels/materials/library.hpp).
+// EOS parameter names by kind (units: docs/options.md; kernels/materials/library.hpp).
 const std::map<std::string, std::vector<std::string>> kEosParams = {
     {"ideal_gas", {"gamma"}},
     {"stiffened_gas", {"gamma", "p_inf"}},

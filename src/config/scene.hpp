@@ -1,4 +1,4 @@
-// A scene: everything one run needs, read strictly from a YAML deck (see README, "Scene decks").
+// A scene: everything one run needs, read strictly from a YAML deck (docs/decks.md; every key: docs/options.md).
 #pragma once
 #include <array>
 #include <map>

@@ -1,7 +1,7 @@
 // A Kokkos Tools profiling region for the lifetime of a scope, so that a profile (Kokkos Tools'
 // space-time stack, kernel timer, or a vendor tool through them) groups the cycle's kernels by
-// phase: hydro::lagrange, remap::sweep_x, halo::exchange, output::dump, ... (README,
-// "Profiling"). Costs nothing when no tool is loaded.
+// phase: hydro::lagrange, remap::sweep_x, halo::exchange, output::dump, ... (docs/perf.md,
+// "Layouts and profiling"). Costs nothing when no tool is loaded.
 #pragma once
 #include <Kokkos_Core.hpp>
 #include <string>

@@ -16,6 +16,7 @@
 #include "config/options.hpp"
 #include "config/scene.hpp"
 #include "core/error.hpp"
+#include "core/mpi_env.hpp"
 #include "driver/signals.hpp"
 #include "driver/simulation.hpp"
 #include "io/checkpoint.hpp"
@@ -262,7 +263,8 @@ int run(const CommandLine& cl) {
     log_line("  mesh: " + sim.mesh().describe());
     log_line(std::string("  kokkos: ") + ExecSpace::name() + ", " +
              std::to_string(ExecSpace().concurrency()) +
-             " threads per rank, Real = " + (sizeof(Real) == 8 ? "double" : "float"));
+             " threads per rank, Real = " + (sizeof(Real) == 8 ? "double" : "float") +
+             (openmp_binding().empty() ? std::string() : "; " + openmp_binding()));
     log_line("  memory estimate: " + mib(per_rank) + " per rank");
     for (const auto& m : sim.modules()) log_line("  module " + m);
     if (restart_path.empty())

@@ -160,6 +160,8 @@ RunResult Simulation::run() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   const double t_begin = t_;
+  const long cycle_begin = cycle_;
+  bool end_warned = false;
   double last_checkpoint = 0;
   long checkpoint_cycle = -1;
   const bool checkpoints =
@@ -181,10 +183,37 @@ RunResult Simulation::run() {
       dt_old_ = ts.dt;
       if (!h.ok) break;
       const bool at_end = t_ >= t_end * (1 - 1e-12);
+      // An end time the run cannot reach: once the step is set by the flow (not by its start or
+      // growth limits), the cycles the rest would take at this step, against time.max_cycles.
+      if (!end_warned && root && !at_end &&
+          (ts.limit == hydro::DtLimit::Cfl || ts.limit == hydro::DtLimit::CourantSum ||
+           ts.limit == hydro::DtLimit::Max || cycle_ >= 100)) {
+        end_warned = true;
+        const double more = (t_end - t_) / double(ts.dt);
+        if (!(more <= double(scene_.time.max_cycles - cycle_))) {
+          char b[320];
+          std::snprintf(b, sizeof b,
+                        "minipagosa: warning: time.end %.6g is out of reach: at the step of "
+                        "cycle %ld (dt %.3e) it needs about %.2e more cycles, and time.max_cycles "
+                        "(%ld) stops the run first, near t = %.3e\n",
+                        t_end, cycle_, double(ts.dt), more, scene_.time.max_cycles,
+                        t_ + double(ts.dt) * double(scene_.time.max_cycles - cycle_));
+          std::fputs(b, stderr);
+          std::fflush(stderr);
+        }
+      }
       if (!settings_.quiet && root && (cycle_ % scene_.output.log_every == 0 || at_end)) {
         const double w = wall(), done = (t_ - t_begin) / (t_end - t_begin);
+        // the wall time left to the end time, or to time.max_cycles where that comes first
+        double eta = done > 0 ? w * (1 - done) / done : -1;
+        const long cycles_done = cycle_ - cycle_begin;
+        if (cycles_done > 0) {
+          const double by_cycles =
+              w / double(cycles_done) * double(scene_.time.max_cycles - cycle_);
+          if (eta < 0 || by_cycles < eta) eta = by_cycles;
+        }
         log_cycle(cycle_, t_, double(ts.dt), hydro::dt_limit_name(ts.limit), ts.cell, w, t_ / t_end,
-                  done > 0 ? w * (1 - done) / done : -1);
+                  eta);
       }
       if (write && writer_ && scene_.output.interval > 0 && t_ >= next_dump_ * (1 - 1e-12) &&
           !at_end) {
