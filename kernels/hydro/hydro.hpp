@@ -47,7 +47,7 @@ struct Options {
   Options() : Options(Numerics{}, StepControl{}) {}
   Options(const Numerics& n, const StepControl& t);
 
-  int order;  // advection order: 2 van Leer, 1 donor cell (numerics.advection)
+  int order;  // advection order: 2 van Leer, 1 donor cell, 3 third order (numerics.advection)
   Real q_linear;
   Real q_quadratic;
   // the viscous stress Q = q ((1 - b) S + b I), b = q_isotropic (point.hpp): 0 the tensor, 1 the

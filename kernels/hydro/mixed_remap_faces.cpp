@@ -263,6 +263,8 @@ struct FaceFluxes {
       auto with_order = [&](auto one) {
         if (order == 2)
           faces(std::integral_constant<int, 2>{}, one);
+        else if (order == 3)
+          faces(std::integral_constant<int, 3>{}, one);
         else
           faces(std::integral_constant<int, 1>{}, one);
       };

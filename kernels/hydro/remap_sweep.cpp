@@ -2,6 +2,8 @@
 // dual faces and the nodes' momentum from them (and the KE fix's redo), the free-expansion impulse.
 #include <mpi.h>
 
+#include <type_traits>
+
 #include "core/columns.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
@@ -19,10 +21,12 @@ namespace {
 // Mass and energy through the owned faces normal to D (single-material scenes). With Expand (the
 // free-expansion rule acts: gm1 > 0, xw allocated), ef holds what the receiver takes and xw the
 // rest of what the donor pays (expansion_share), and any_work is raised where a face did work.
-template <int D, bool Expand>
+// Ord, the advection order, is a template argument (as DualFaceColumns'): face_value's branches
+// on it are then resolved at compile time, and a third order costs the default nothing.
+template <int D, bool Expand, int Ord>
 void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const Field3& pre,
                        const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
-                       int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
+                       const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
                        const Kokkos::View<int, MemSpace>& any_work) {
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
   // (k-columns, core/columns.hpp; the four cells along D around the face are loaded whatever
@@ -37,7 +41,7 @@ void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const
           const Real f = vfa(i, j, k);
           auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
           Real m, en;
-          column_face_flux(f, at, ra, ea, pa, ord, m, en);
+          column_face_flux(f, at, ra, ea, pa, Ord, m, en);
           mfa(i, j, k) = m;
           if constexpr (!Expand) {
             efa(i, j, k) = en;
@@ -74,12 +78,21 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
                      const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
                      int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
                      const Kokkos::View<int, MemSpace>& any_work) {
-  if (gm1 > 0)
-    cell_flux_columns<D, true>(lo, hi, vf, pre, rho, e, mf, ef, ord, xw, gm1, ratio, wall_lo,
-                               wall_hi, any_work);
+  auto with_order = [&](auto o) {
+    constexpr int Ord = decltype(o)::value;
+    if (gm1 > 0)
+      cell_flux_columns<D, true, Ord>(lo, hi, vf, pre, rho, e, mf, ef, xw, gm1, ratio, wall_lo,
+                                      wall_hi, any_work);
+    else
+      cell_flux_columns<D, false, Ord>(lo, hi, vf, pre, rho, e, mf, ef, ef, gm1, ratio, wall_lo,
+                                       wall_hi, any_work);
+  };
+  if (ord == 1)
+    with_order(std::integral_constant<int, 1>{});
+  else if (ord == 3)
+    with_order(std::integral_constant<int, 3>{});
   else
-    cell_flux_columns<D, false>(lo, hi, vf, pre, rho, e, mf, ef, ord, ef, gm1, ratio, wall_lo,
-                                wall_hi, any_work);
+    with_order(std::integral_constant<int, 2>{});
 }
 
 namespace {
@@ -108,6 +121,11 @@ struct DualFaceColumns {
         run<1, true>(i, j, k0, k1);
       else
         run<1, false>(i, j, k0, k1);
+    } else if (ord == 3) {
+      if (weigh)
+        run<3, true>(i, j, k0, k1);
+      else
+        run<3, false>(i, j, k0, k1);
     } else {
       if (weigh)
         run<2, true>(i, j, k0, k1);
