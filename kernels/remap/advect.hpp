@@ -21,12 +21,18 @@ namespace mp::remap {
 //            bind (Leonard's QUICKEST, Comput. Methods Appl. Mech. Eng. 19 (1979) 59; the
 //            3-point gradient in a second-order Taylor expansion of the PAGOSA paper's "variant
 //            of van Leer's monotonic upwind scheme discussed by Youngs", Youngs 1982).
+//   order -2, -3 (verification only, Hydro::set_unlimited): the unbounded slopes, Fromm's
+//            (a + b) / 2 and S3, also at extrema; they oscillate at a discontinuity.
 // Both limited slopes lie inside the TVD region 0 <= S / a <= 2 min(1, b / a) (S3 is a weighted
 // mean of a and b, so the bound binds only where one difference exceeds about twice the other),
 // and both are 0 at an extremum (a b <= 0).
 KOKKOS_INLINE_FUNCTION Real face_value(Real up, Real donor, Real down, Real sigma, int order) {
   if (order == 1) return donor;
   const Real a = donor - up, b = down - donor;
+  if (order < 0)
+    return donor + Real(0.5) * (1 - sigma) *
+                       (order == -3 ? ((1 + sigma) * a + (2 - sigma) * b) * Real(1.0 / 3.0)
+                                    : Real(0.5) * (a + b));
   if (a * b <= 0) return donor;
   if (order == 3) {
     const Real s3 = ((1 + sigma) * a + (2 - sigma) * b) * Real(1.0 / 3.0);
