@@ -175,3 +175,52 @@ TEST(Sedov, UnsplitRemapIsSymmetricToRoundOff) {
   // of one sign (observed 2.9e-15, roundings of mixed sign cancel). Was 1e-12 (330x).
   EXPECT_LT(asym, test::roundoff(1e-13));
 }
+
+// The third-order remap (numerics.advection: third) at 24^3 and 48^3 against the default second
+// order (issue #53; docs/studies/2026-12-06-third-order.md): L1(rho) and the half-peak shock
+// radius's error, each run once for the two tests below. Observed (2026-12-06, second / third):
+// L1 8.351e-2 / 8.827e-2 at 24^3 and 5.011e-2 / 5.426e-2 at 48^3 (1.057x, 1.083x); |R/R_exact - 1|
+// 5.30e-3 / 1.98e-3 and 4.40e-3 / 4.48e-3.
+namespace {
+struct SedovOrders {
+  double l1[2][2], radius[2][2];  // [second, third][24^3, 48^3]
+};
+const SedovOrders& sedov_orders() {
+  static const SedovOrders o = [] {
+    SedovOrders r{};
+    const double exact = std::pow(0.41, 0.4);
+    const auto measure = [&](const SedovRun& run, const char* what, int a, int n) {
+      EXPECT_TRUE(run.result.ok) << what << ": " << run.result.health.what;
+      r.l1[a][n] = sedov_l1(run);
+      r.radius[a][n] = std::abs(exact::octant_shock_radius(
+                                    run.rho, run.n, run.dx,
+                                    0.5 * (1 + exact::octant_binned_peak(run.rho, run.n, run.dx))) /
+                                    exact -
+                                1);
+      std::printf("Sedov %d^3 %s: L1(rho) %.4e, |R / R_exact - 1| %.4e (%ld cycles)\n", run.n, what,
+                  r.l1[a][n], r.radius[a][n], run.result.cycles);
+    };
+    measure(run_sedov({"mesh.cells=[24,24,24]"}), "second", 0, 0);
+    measure(run_sedov({"mesh.cells=[24,24,24]", "numerics.advection=third"}), "third", 1, 0);
+    measure(sedov_split(), "second", 0, 1);
+    measure(run_sedov({"numerics.advection=third"}), "third", 1, 1);
+    return r;
+  }();
+  return o;
+}
+}  // namespace
+
+// The shock radius: no more than 5 % worse with third order (the issue's bound).
+TEST(Sedov, ThirdOrderShockRadiusNoWorseThanSecond) {
+  const SedovOrders& o = sedov_orders();
+  for (int n = 0; n < 2; ++n) EXPECT_LE(o.radius[1][n], 1.05 * o.radius[0][n]) << n;
+}
+
+// A regression pin, not a verification: L1(rho) is 5.7 % and 8.3 % above second order's with
+// third order (the issue's bound is 5 %; the blast's hot, near-vacuum centre, as the expansion
+// measures of test_hydro's ThirdOrderRegressionPin). Bounds: 1.1x the observed values.
+TEST(SedovRegressionPin, ThirdOrderDensityL1) {
+  const SedovOrders& o = sedov_orders();
+  EXPECT_LE(o.l1[1][0], 1.1 * 8.827e-2);
+  EXPECT_LE(o.l1[1][1], 1.1 * 5.426e-2);
+}

@@ -180,9 +180,9 @@ TEST(Deck, OutOfRange) {
 }
 
 TEST(Deck, EnumerationErrors) {
-  expect_holds(
-      error_of(deck({{15, "  advection: thrid"}})),
-      {"deck.yaml:15:", "key 'numerics.advection'", "'thrid' is not one of: second, first"});
+  expect_holds(error_of(deck({{15, "  advection: thrid"}})),
+               {"deck.yaml:15:", "key 'numerics.advection'",
+                "'thrid' is not one of: second, first, third", "did you mean 'third'"});
   expect_holds(
       error_of(deck({{8, "  x: reflect"}})),
       {"deck.yaml:8:", "key 'boundaries.x'",
@@ -428,6 +428,10 @@ TEST(Deck, OverridesChangeValues) {
   const mp::Scene t =
       mp::read_scene(mp::Deck::parse(without(14, 17), "deck.yaml", {"numerics.advection=first"}));
   EXPECT_EQ(t.numerics.advection, mp::hydro::Advection::First);
+  const mp::Scene u =
+      mp::read_scene(mp::Deck::parse(deck(), "deck.yaml", {"numerics.advection=third"}));
+  EXPECT_EQ(u.numerics.advection, mp::hydro::Advection::Third);
+  EXPECT_EQ(mp::hydro::advection_order(u.numerics.advection), 3);
 }
 
 TEST(Deck, EditDistanceAndNearest) {
@@ -443,6 +447,19 @@ TEST(Deck, EditDistanceAndNearest) {
   EXPECT_EQ(mp::nearest("reflect", {"reflective", "outflow", "periodic"}), "reflective");
   EXPECT_EQ(mp::nearest("gaz", {"gas", "air"}), "gas");
   EXPECT_EQ(mp::nearest("x", {}), "");
+}
+
+// A region's wave block: the profile and the axis (tests/test_hydro.cpp's convergence runs).
+TEST(Deck, WaveShapeAndDiagonal) {
+  const std::string with_wave = deck({{26, "    pressure: 1.0\n    wave: {amplitude: 0.2}"}});
+  const mp::Scene a = mp::read_scene(mp::Deck::parse(
+      with_wave, "deck.yaml", {"regions.0.wave.shape=plateau", "regions.0.wave.axis=diagonal"}));
+  EXPECT_EQ(a.regions[0].wave_shape, 1);
+  EXPECT_EQ(a.regions[0].wave_axis, 3);
+  expect_holds(error_of(with_wave, {"regions.0.wave.shape=plato"}),
+               {"key 'regions.0.wave.shape'", "'plato' is not one of: sine, plateau"});
+  expect_holds(error_of(with_wave, {"regions.0.wave.axis=diagonal", "mesh.cells=[8,4,4]"}),
+               {"key 'regions.0.wave.axis'", "same number of cells along every axis"});
 }
 
 TEST(Deck, ShippedDecksParse) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "driver/wave.hpp"
 #include "exact/norms.hpp"
 #include "exact/riemann.hpp"
 #include "support.hpp"
@@ -275,6 +276,127 @@ TEST(SmoothWave, FirstOrderOptionIsFirstOrder) {
   std::printf("Smooth wave, first order: L1 %.4e %.4e, order %.3f\n", e64, e128, o);
   EXPECT_GT(o, 0.8);
   EXPECT_LT(o, 1.3);
+}
+
+namespace {
+
+// The entropy wave of configs/smooth_wave.yaml after one period with the wave's `shape` (sine or
+// plateau, driver/wave.hpp) and the remap's `advection`: along x on n x 2 x 2 cells, or along
+// the box diagonal on n^3 cells of the unit box with velocity (1, 1, 1) (one period is again
+// t = 1). The error is the mean |rho - exact| over the cells, the exact value the cell mean of
+// the initial profile (for the 1-D wave the L1 norm smooth_wave_error takes).
+struct WaveRun {
+  double l1 = NAN;
+  long cycles = 0;
+};
+WaveRun wave_run(int n, bool diagonal, const std::string& shape, const std::string& advection,
+                 bool unlimited) {
+  const std::string c = std::to_string(n), h = std::to_string(2.0 / n);
+  std::vector<std::string> ov = {"numerics.advection=" + advection,
+                                 "regions.0.wave.shape=" + shape};
+  if (diagonal) {
+    for (const std::string& o :
+         {"mesh.cells=[" + c + "," + c + "," + c + "]", std::string("mesh.hi=[1,1,1]"),
+          std::string("regions.0.velocity=[1,1,1]"), std::string("regions.0.wave.axis=diagonal")})
+      ov.push_back(o);
+  } else {
+    ov.push_back("mesh.cells=[" + c + ",2,2]");
+    ov.push_back("mesh.hi=[1," + h + "," + h + "]");
+  }
+  test::Ran r;
+  RunSettings settings;
+  settings.quiet = true;
+  r.sim = std::make_unique<Simulation>(test::load_scene("smooth_wave.yaml", ov), MPI_COMM_WORLD,
+                                       settings);
+  r.sim->initialize();
+  if (unlimited) r.sim->hydro().set_unlimited();
+  r.result = r.sim->run();
+  EXPECT_TRUE(r.result.ok) << r.result.health.what;
+  WaveRun out;
+  out.cycles = r.result.cycles;
+  const Mesh& m = r.sim->mesh();
+  const auto rho = test::gather(m, r.sim->hydro().state().rho, Centering::Cell);
+  const int nx = m.global_cells(0), ny = m.global_cells(1), nz = m.global_cells(2);
+  const int kind = shape == "plateau" ? wave::kPlateau : wave::kSine;
+  const double w = 1.0 / nx;
+  double sum = 0;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const double s0 = diagonal ? (i + j + k) * w : i * w;
+        const double exact = 1 + 0.2 * wave::cell_mean(kind, s0, w, diagonal ? 3 : 1);
+        sum += std::abs(rho[i + nx * (j + long(ny) * k)] - exact);
+      }
+  out.l1 = sum / (double(nx) * ny * nz);
+  return out;
+}
+
+// Observed orders of three runs at n, 2n, 4n cells per axis.
+struct Orders {
+  double e[3], o1, o2;
+};
+Orders wave_orders(const int (&n)[3], bool diagonal, const std::string& shape,
+                   const std::string& advection, bool unlimited = false) {
+  Orders r;
+  long cycles[3];
+  for (int q = 0; q < 3; ++q) {
+    const WaveRun w = wave_run(n[q], diagonal, shape, advection, unlimited);
+    r.e[q] = w.l1;
+    cycles[q] = w.cycles;
+  }
+  r.o1 = std::log2(r.e[0] / r.e[1]);
+  r.o2 = std::log2(r.e[1] / r.e[2]);
+  std::printf(
+      "%s wave, %s, %s%s: L1(rho) %d %.4e  %d %.4e  %d %.4e  (%ld/%ld/%ld cycles)  orders %.3f "
+      "%.3f\n",
+      shape.c_str(), diagonal ? "box diagonal" : "1-D", advection.c_str(),
+      unlimited ? " (limiter off)" : "", n[0], r.e[0], n[1], r.e[1], n[2], r.e[2], cycles[0],
+      cycles[1], cycles[2], r.o1, r.o2);
+  return r;
+}
+
+}  // namespace
+
+// The third-order remap (numerics.advection: third; remap/advect.hpp, docs/numerics.md
+// "Third-order advection") where its limiter does not act. With a TVD bound every periodic
+// profile is limited at its extrema (the slope is 0 where the differences change sign), so the
+// unlimited regime is measured two ways:
+// - in 1-D, the limited scheme on the plateau profile (driver/wave.hpp), whose extrema are flat
+//   plateaus: the limiter acts only in the smoothstep's t^4 feet, at values that fall as h^4.
+//   From 128 cells per period (observed 2.46 from 64 to 128, 1.97 from 32 to 64: the feet's
+//   limited cells still carry error there); the second-order scheme beside it;
+// - along the box diagonal in 3-D, the sine with the limiter switched off (Hydro::set_unlimited,
+//   a verification switch): each split sweep advects along one axis, and with a uniform velocity
+//   the three sweeps commute, so the splitting adds no error and the order is the 1-D scheme's.
+// Bound: the 2.7 at three resolutions (the scheme's order is 3).
+TEST(SmoothWave, ThirdOrderUnlimited) {
+  const int n[3] = {128, 256, 512};
+  const Orders t = wave_orders(n, false, "plateau", "third");
+  const Orders s = wave_orders(n, false, "plateau", "second");
+  EXPECT_GE(t.o1, 2.7);
+  EXPECT_GE(t.o2, 2.7);
+  EXPECT_LT(t.e[2], s.e[2]);
+}
+
+TEST(SmoothWave, ThirdOrderUnlimitedAlongTheDiagonal) {
+  const int n[3] = {16, 32, 64};
+  const Orders t = wave_orders(n, true, "sine", "third", true);
+  EXPECT_GE(t.o1, 2.7);
+  EXPECT_GE(t.o2, 2.7);
+}
+
+// Where the limiter acts, bound order >= 1.8 (the issue's): in 1-D the sine, whose extrema clip
+// the slope to 0 (a b <= 0; observed 2.16, 2.29 from 32 cells); along the diagonal the plateau,
+// whose feet's limited cells hold most of the error at 16 to 64 cells per period (observed 2.35,
+// 2.05; the sine there gives 1.78, 2.24: from 16^3 its extrema are 16 cells apart).
+TEST(SmoothWave, ThirdOrderLimited) {
+  const int n1[3] = {32, 64, 128}, n3[3] = {16, 32, 64};
+  const Orders a = wave_orders(n1, false, "sine", "third");
+  EXPECT_GE(a.o1, 1.8);
+  EXPECT_GE(a.o2, 1.8);
+  const Orders b = wave_orders(n3, true, "plateau", "third");
+  EXPECT_GE(b.o1, 1.8);
+  EXPECT_GE(b.o2, 1.8);
 }
 
 TEST(Conservation, ClosedBoxMassToRoundOff) {
@@ -594,4 +716,130 @@ TEST(Noh, PlanarShockSpeedAndPlateau) {
   // Without the fix the same test fails: the shock lags by more than a cell (observed 2.25).
   const Measure off = measure(100, false);
   EXPECT_GT((r_exact - off.shock) / off.dx, 1.0);
+}
+
+// The third-order remap on the shock problems verified above, at their resolutions: each error
+// measure with `third` against the same measure with today's default `second`. (The issue's
+// claim: no error above second order's by more than 5 %.) Errors are magnitudes: L1 norms,
+// distances from the exact front in cells, relative errors of plateaus and centres.
+namespace {
+
+void add_profile_rows(std::vector<std::pair<std::string, double>>& out, const std::string& deck,
+                      int n, const std::string& advection) {
+  const std::string cells = "mesh.cells=[" + std::to_string(n) + ",2,2]";
+  auto r = test::run_scene(test::load_scene(deck, {cells, "numerics.advection=" + advection}));
+  EXPECT_TRUE(r.result.ok) << deck << " " << advection << ": " << r.result.health.what;
+  if (!r.result.ok) return;
+  const Profile p = profile_x(r);
+  const std::string at = " " + std::to_string(n);
+  if (deck == "sod_x.yaml") {
+    out.push_back({"Sod L1(rho)" + at, l1_sod(p, kSod, 0.5, 0.2)});
+  } else if (deck == "leblanc.yaml") {
+    const double g = 5.0 / 3.0;
+    const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
+    const double t = 6, shock = 3 + t * rs.right_head_speed(), contact = 3 + t * rs.u_star();
+    const double e_star = rs.p_star() / ((g - 1) * rs.rho_star_right());
+    double e_peak = 0;
+    for (size_t i = 0; i < p.x.size(); ++i)
+      if (p.x[i] > contact - 0.5 && p.x[i] < shock - 0.2) e_peak = std::max(e_peak, p.e[i]);
+    out.push_back({"LeBlanc L1(rho)" + at, exact::l1_density(p.x, p.rho, p.dx, rs, 3, t)});
+    out.push_back({"LeBlanc |shock - exact| (cells)" + at,
+                   std::abs(crossing(p, 0.5 * (1e-3 + rs.rho_star_right()), -1) - shock) / p.dx});
+    out.push_back({"LeBlanc |contact e peak / e* - 1|" + at, std::abs(e_peak / e_star - 1)});
+  } else if (deck == "test123.yaml") {
+    const exact::Riemann rs({1.0, -2.0, 0.4}, {1.0, 2.0, 0.4}, 1.4, 1.4);
+    const int nx = static_cast<int>(p.rho.size());
+    const double rho_c = 0.5 * (p.rho[nx / 2 - 1] + p.rho[nx / 2]);
+    const double e_c = 0.5 * (p.e[nx / 2 - 1] + p.e[nx / 2]);
+    out.push_back({"123 L1(rho)" + at, l1_sod(p, rs, 0.5, 0.15)});
+    out.push_back({"123 |centre rho / rho* - 1|" + at, std::abs(rho_c / rs.rho_star_left() - 1)});
+    out.push_back({"123 |centre e / e* - 1|" + at,
+                   std::abs(e_c / (rs.p_star() / (0.4 * rs.rho_star_left())) - 1)});
+  } else {  // noh_planar.yaml
+    const double t = 0.6;
+    out.push_back({"planar Noh L1(rho)" + at,
+                   exact::l1_density(p.x, p.rho, p.dx, exact::Noh(1, 5.0 / 3.0), t)});
+    out.push_back(
+        {"planar Noh |shock - exact| (cells)" + at, std::abs(crossing(p, 2.5, -1) - t / 3) / p.dx});
+  }
+}
+
+std::vector<std::pair<std::string, double>> shock_measures(const std::string& advection) {
+  std::vector<std::pair<std::string, double>> out;
+  for (int n : {100, 200, 400}) add_profile_rows(out, "sod_x.yaml", n, advection);
+  for (int n : {400, 800}) add_profile_rows(out, "leblanc.yaml", n, advection);
+  for (int n : {200, 400, 800}) add_profile_rows(out, "test123.yaml", n, advection);
+  for (int n : {100, 200}) add_profile_rows(out, "noh_planar.yaml", n, advection);
+  return out;
+}
+
+// Both schemes' measures, run once for the two tests below.
+struct ShockTable {
+  std::vector<std::pair<std::string, double>> second, third;
+};
+const ShockTable& shock_table() {
+  static const ShockTable t = [] {
+    ShockTable r{shock_measures("second"), shock_measures("third")};
+    std::printf("%-44s %12s %12s %8s\n", "measure (resolution)", "second", "third", "ratio");
+    for (std::size_t q = 0; q < r.second.size() && q < r.third.size(); ++q)
+      std::printf("%-44s %12.4e %12.4e %8.3f\n", r.second[q].first.c_str(), r.second[q].second,
+                  r.third[q].second, r.third[q].second / r.second[q].second);
+    return r;
+  }();
+  return t;
+}
+
+// The measures where third order misses the bound (ThirdOrderRegressionPin below): the
+// expansions' measures, LeBlanc's shock position and contact energy and the 123 problem's
+// near-vacuum centre, which the free-expansion rule and the KE fix's donor-value redo were tuned
+// on with second-order slopes.
+bool expansion_measure(const std::string& what) {
+  return what.rfind("LeBlanc |", 0) == 0 || what.rfind("123 |centre", 0) == 0;
+}
+
+}  // namespace
+
+// The L1 norms of Sod, LeBlanc and 123 and planar Noh's L1 and shock position: third order no
+// more than 5 % above second (the bound). Observed (2026-12-06): 0.78 .. 0.98 of second
+// order's (docs/studies/2026-12-06-third-order.md has the table).
+TEST(ThirdOrder, ShockTubesNoWorseThanSecond) {
+  const ShockTable& t = shock_table();
+  ASSERT_EQ(t.second.size(), t.third.size());
+  int checked = 0;
+  for (std::size_t q = 0; q < t.second.size(); ++q) {
+    if (expansion_measure(t.second[q].first)) continue;
+    EXPECT_LE(t.third[q].second, 1.05 * t.second[q].second) << t.second[q].first;
+    ++checked;
+  }
+  EXPECT_EQ(checked, 12);
+}
+
+// A regression pin, not a verification: where third order is worse than second (observed
+// 2026-12-06, second / third): LeBlanc's shock 2.86 / 3.78 cells from exact at 400 cells and
+// 1.44 / 2.61 at 800, its contact energy peak +9.3 / +15.6 % and +7.4 / +11.2 %; the 123
+// problem's centre density -26.2 / -27.3 %, -0.99 / -4.43 %, -0.55 / -2.78 % and energy 12.4 /
+// 13.1 %, 1.52 / 3.05 %, 1.32 / 2.38 % at 200 / 400 / 800 cells. Why the default stays second
+// order (docs/numerics.md, "Third-order advection"). Bounds: each third-order value at most
+// 1.2x its observed value (a change of the scheme that moves them shows here).
+TEST(ThirdOrderRegressionPin, ExpansionMeasuresWorseThanSecond) {
+  const ShockTable& t = shock_table();
+  const std::vector<std::pair<std::string, double>> observed = {
+      {"LeBlanc |shock - exact| (cells) 400", 3.7838},
+      {"LeBlanc |contact e peak / e* - 1| 400", 0.15591},
+      {"LeBlanc |shock - exact| (cells) 800", 2.6090},
+      {"LeBlanc |contact e peak / e* - 1| 800", 0.11155},
+      {"123 |centre rho / rho* - 1| 200", 0.27325},
+      {"123 |centre e / e* - 1| 200", 0.13126},
+      {"123 |centre rho / rho* - 1| 400", 0.044330},
+      {"123 |centre e / e* - 1| 400", 0.030538},
+      {"123 |centre rho / rho* - 1| 800", 0.027785},
+      {"123 |centre e / e* - 1| 800", 0.023832}};
+  int found = 0;
+  for (const auto& [what, value] : t.third)
+    for (const auto& [name, seen] : observed)
+      if (what == name) {
+        EXPECT_LE(value, 1.2 * seen) << what;
+        ++found;
+      }
+  EXPECT_EQ(found, int(observed.size()));
 }

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "exact/norms.hpp"
@@ -28,10 +29,11 @@ struct NohMeasure {
   double shell[6] = {0, 0, 0, 0, 0, 0};
 };
 
-NohMeasure noh_at(int n) {
+NohMeasure noh_at(int n, const std::vector<std::string>& extra = {}) {
   const std::string c = std::to_string(n);
-  auto r =
-      test::run_scene(test::load_scene("noh.yaml", {"mesh.cells=[" + c + "," + c + "," + c + "]"}));
+  std::vector<std::string> ov = {"mesh.cells=[" + c + "," + c + "," + c + "]"};
+  ov.insert(ov.end(), extra.begin(), extra.end());
+  auto r = test::run_scene(test::load_scene("noh.yaml", ov));
   NohMeasure out;
   EXPECT_TRUE(r.result.ok) << r.result.health.what;
   if (!r.result.ok) return out;
@@ -67,11 +69,11 @@ NohMeasure noh_at(int n) {
   out.radius = std::cbrt(double(above) * h * h * h * 6 / M_PI) / rs - 1;
   for (int s = 0; s < 6; ++s) out.shell[s] = shell_cells[s] ? shell_sum[s] / shell_cells[s] : 0;
   std::printf(
-      "Noh %d^3 (t = %.3f, %ld cycles): plateau %+.2f %% over %d cells, checkerboard %.2f %%, "
+      "Noh %d^3%s (t = %.3f, %ld cycles): plateau %+.2f %% over %d cells, checkerboard %.2f %%, "
       "shock radius %+.2f %%, shells %.1f %.1f %.1f %.1f %.1f %.1f\n",
-      n, r.result.time, r.result.cycles, 100 * out.plateau, out.cells, 100 * out.checker,
-      100 * out.radius, out.shell[0], out.shell[1], out.shell[2], out.shell[3], out.shell[4],
-      out.shell[5]);
+      n, extra.empty() ? "" : (" " + extra[0]).c_str(), r.result.time, r.result.cycles,
+      100 * out.plateau, out.cells, 100 * out.checker, 100 * out.radius, out.shell[0], out.shell[1],
+      out.shell[2], out.shell[3], out.shell[4], out.shell[5]);
   return out;
 }
 
@@ -114,4 +116,33 @@ TEST(Noh, PlateauConvergesWithTheDefaultNumerics) {
   EXPECT_LT(b.checker, a.checker);
   EXPECT_LT(std::abs(b.radius), 0.02);
   for (int s = 0; s < 6; ++s) EXPECT_GT(b.shell[s], 0.85 * 64) << "shell " << s;
+}
+
+// The third-order remap (numerics.advection: third) at 64^3 against the default second order
+// (issue #53; docs/studies/2026-12-06-third-order.md), both runs shared by the two tests below.
+// Observed (2026-12-06, second / third): plateau -4.76 / -4.09 %, checkerboard 2.70 / 2.86 %,
+// shock radius +0.75 / +0.75 %, inner shells 61.3 63.1 62.9 / 66.2 65.1 64.5.
+namespace {
+const std::pair<NohMeasure, NohMeasure>& noh_orders() {
+  static const std::pair<NohMeasure, NohMeasure> r{noh_at(64),
+                                                   noh_at(64, {"numerics.advection=third"})};
+  return r;
+}
+}  // namespace
+
+// The plateau and the shock radius: no more than 5 % worse with third order (the issue's bound).
+TEST(Noh, ThirdOrderPlateauAndRadiusNoWorseThanSecond) {
+  const NohMeasure& s = noh_orders().first;
+  const NohMeasure& t = noh_orders().second;
+  ASSERT_GT(t.cells, 100);
+  EXPECT_LE(std::abs(t.plateau), 1.05 * std::abs(s.plateau));
+  EXPECT_LE(std::abs(t.radius), 1.05 * std::abs(s.radius));
+  for (int q = 0; q < 6; ++q) EXPECT_GT(t.shell[q], 0.85 * 64) << "shell " << q;
+}
+
+// A regression pin, not a verification: the checkerboard is 1.06x second order's with third
+// order (2.86 against 2.70 %; the issue's bound is 5 %), still within issue #16's 3 %. Bound:
+// 1.1x the observed value.
+TEST(NohRegressionPin, ThirdOrderCheckerboard) {
+  EXPECT_LE(noh_orders().second.checker, 1.1 * 0.0286);
 }

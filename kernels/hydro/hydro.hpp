@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/columns.hpp"
+#include "core/error.hpp"
 #include "eos/eos.hpp"
 #include "hydro/faces.hpp"
 #include "hydro/ke_fix.hpp"
@@ -47,7 +48,8 @@ struct Options {
   Options() : Options(Numerics{}, StepControl{}) {}
   Options(const Numerics& n, const StepControl& t);
 
-  int order;  // advection order: 2 van Leer, 1 donor cell (numerics.advection)
+  int order;  // advection order: 2 van Leer, 1 donor cell, 3 third order (numerics.advection);
+  // -2, -3 the same without the limiter (set_unlimited)
   Real q_linear;
   Real q_quadratic;
   // the viscous stress Q = q ((1 - b) S + b I), b = q_isotropic (point.hpp): 0 the tensor, 1 the
@@ -219,6 +221,14 @@ class Hydro {
   void set_time_limits(bool separate, Real cfl_transport) {
     opt_.separate_limits = separate;
     opt_.cfl_transport = cfl_transport;
+  }
+  // Switches the remap's monotonicity limiter off (verification only: the scene reader does
+  // not set it; tests/test_hydro.cpp measures the third-order slope's unlimited order with it).
+  // The face values then take the unbounded slopes (remap::face_value, negative orders), which
+  // oscillate at a discontinuity. Single-material scenes only (throws otherwise).
+  void set_unlimited() {
+    if (mm_) throw RunError("Hydro::set_unlimited: single-material scenes only");
+    if (opt_.order > 1) opt_.order = -opt_.order;
   }
   // The per-material state of a multi-material scene, or nullptr.
   mat::MaterialState* materials() { return mm_.get(); }

@@ -8,8 +8,22 @@
 
 namespace mp::hydro {
 
-// numerics.advection: second-order van Leer, or first-order donor cell
-enum class Advection { Second, First };
+// numerics.advection: second-order van Leer, first-order donor cell, or the third-order
+// Courant-weighted 3-point slope under van Leer's monotonicity bound (remap/advect.hpp)
+enum class Advection { Second, First, Third };
+
+// The face values' order (remap::face_value's `order`) of an advection choice.
+constexpr int advection_order(Advection a) {
+  switch (a) {
+    case Advection::First:
+      return 1;
+    case Advection::Second:
+      return 2;
+    case Advection::Third:
+      return 3;
+  }
+  return 2;
+}
 // numerics.remap: alternating split sweeps, or one unsplit step over the three axes
 enum class Remap { Split, Unsplit };
 // numerics.geometry: the Lagrangian step's forces and work on the faces moved by dt/2

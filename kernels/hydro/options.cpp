@@ -5,7 +5,7 @@
 namespace mp::hydro {
 
 Options::Options(const Numerics& n, const StepControl& t)
-    : order(n.advection == Advection::First ? 1 : 2),
+    : order(advection_order(n.advection)),
       q_linear(Real(n.q_linear)),
       q_quadratic(Real(n.q_quadratic)),
       q_isotropic(Real(n.q_isotropic)),

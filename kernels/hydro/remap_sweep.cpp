@@ -2,6 +2,8 @@
 // dual faces and the nodes' momentum from them (and the KE fix's redo), the free-expansion impulse.
 #include <mpi.h>
 
+#include <type_traits>
+
 #include "core/columns.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
@@ -19,11 +21,15 @@ namespace {
 // Mass and energy through the owned faces normal to D (single-material scenes). With Expand (the
 // free-expansion rule acts: gm1 > 0, xw allocated), ef holds what the receiver takes and xw the
 // rest of what the donor pays (expansion_share), and any_work is raised where a face did work.
-template <int D, bool Expand>
+// Ord, the advection order, is a template argument (as DualFaceColumns'): face_value's branches
+// on it are then resolved at compile time, and a third order costs the default nothing (Ord 0:
+// `ord` read at run time, the unlimited orders of Hydro::set_unlimited).
+template <int D, bool Expand, int Ord>
 void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const Field3& pre,
                        const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
                        int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
                        const Kokkos::View<int, MemSpace>& any_work) {
+  const int o = Ord != 0 ? Ord : ord;
   constexpr int sx = D == 0, sy = D == 1, sz = D == 2;
   // (k-columns, core/columns.hpp; the four cells along D around the face are loaded whatever
   // the wind, and the donor's stencil selected from them: fixed offsets, as dual_face_value)
@@ -37,7 +43,7 @@ void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const
           const Real f = vfa(i, j, k);
           auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
           Real m, en;
-          column_face_flux(f, at, ra, ea, pa, ord, m, en);
+          column_face_flux(f, at, ra, ea, pa, o, m, en);
           mfa(i, j, k) = m;
           if constexpr (!Expand) {
             efa(i, j, k) = en;
@@ -74,12 +80,23 @@ void cell_flux_sweep(const int lo[3], const int hi[3], const Field3& vf, const F
                      const Field3& rho, const Field3& e, const Field3& mf, const Field3& ef,
                      int ord, const Field3& xw, Real gm1, Real ratio, int wall_lo, int wall_hi,
                      const Kokkos::View<int, MemSpace>& any_work) {
-  if (gm1 > 0)
-    cell_flux_columns<D, true>(lo, hi, vf, pre, rho, e, mf, ef, ord, xw, gm1, ratio, wall_lo,
-                               wall_hi, any_work);
+  auto with_order = [&](auto o) {
+    constexpr int Ord = decltype(o)::value;
+    if (gm1 > 0)
+      cell_flux_columns<D, true, Ord>(lo, hi, vf, pre, rho, e, mf, ef, ord, xw, gm1, ratio, wall_lo,
+                                      wall_hi, any_work);
+    else
+      cell_flux_columns<D, false, Ord>(lo, hi, vf, pre, rho, e, mf, ef, ord, ef, gm1, ratio,
+                                       wall_lo, wall_hi, any_work);
+  };
+  if (ord == 1)
+    with_order(std::integral_constant<int, 1>{});
+  else if (ord == 3)
+    with_order(std::integral_constant<int, 3>{});
+  else if (ord == 2)
+    with_order(std::integral_constant<int, 2>{});
   else
-    cell_flux_columns<D, false>(lo, hi, vf, pre, rho, e, mf, ef, ord, ef, gm1, ratio, wall_lo,
-                                wall_hi, any_work);
+    with_order(std::integral_constant<int, 0>{});
 }
 
 namespace {
@@ -90,11 +107,13 @@ namespace {
 template <int D, class A>
 struct DualFaceColumns {
   A mf, nm, u, v, w, F, U, V, W, K;
+  // (Ord 0: `ord` read at run time, the unlimited orders of Hydro::set_unlimited)
   template <int Ord, bool Weigh>
-  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1) const {
+  KOKKOS_INLINE_FUNCTION void run(int i, int j, int k0, int k1, int ord = 0) const {
+    const int o = Ord != 0 ? Ord : ord;
 #pragma GCC ivdep
     for (int k = k0; k < k1; ++k) {
-      const DualFace df = dual_face(mf, nm, u, v, w, i, j, k, D, Ord, Weigh);
+      const DualFace df = dual_face(mf, nm, u, v, w, i, j, k, D, o, Weigh);
       F(i, j, k) = df.f;
       U(i, j, k) = df.u;
       V(i, j, k) = df.v;
@@ -102,20 +121,24 @@ struct DualFaceColumns {
       K(i, j, k) = df.k;
     }
   }
-  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1, int ord, bool weigh) const {
-    if (ord == 1) {
-      if (weigh)
-        run<1, true>(i, j, k0, k1);
-      else
-        run<1, false>(i, j, k0, k1);
-    } else {
-      if (weigh)
-        run<2, true>(i, j, k0, k1);
-      else
-        run<2, false>(i, j, k0, k1);
-    }
-  }
 };
+
+// The launch of one order and weighing (a function template, not a generic lambda around the
+// kernel: nvcc allows no extended lambda inside one).
+template <int D, int Ord, bool Weigh>
+void dual_face_launch(const int lo[3], const int hi[3], const Field3& mf, const Field3& nm,
+                      const Field3& u, const Field3& v, const Field3& w, const Field3& F,
+                      const Field3& U, const Field3& V, const Field3& W, const Field3& K, int ord) {
+  // (k-columns, core/columns.hpp)
+  for_columns(
+      "remap::dual_face", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        const auto mfa = local(mf);
+        const DualFaceColumns<D, decltype(mfa)> c{mfa,      local(nm), local(u), local(v),
+                                                  local(w), local(F),  local(U), local(V),
+                                                  local(W), local(K)};
+        c.template run<Ord, Weigh>(i, j, k0, k1, ord);
+      });
+}
 
 }  // namespace
 
@@ -124,15 +147,23 @@ void dual_face_sweep(const int lo[3], const int hi[3], const Field3& mf, const F
                      const Field3& u, const Field3& v, const Field3& w, const Field3& F,
                      const Field3& U, const Field3& V, const Field3& W, const Field3& K, int ord,
                      bool weigh) {
-  // (k-columns, core/columns.hpp)
-  for_columns(
-      "remap::dual_face", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-        const auto mfa = local(mf);
-        const DualFaceColumns<D, decltype(mfa)> c{mfa,      local(nm), local(u), local(v),
-                                                  local(w), local(F),  local(U), local(V),
-                                                  local(W), local(K)};
-        c(i, j, k0, k1, ord, weigh);
-      });
+  // (one launch per order and weighing, chosen here: the choice per column inside the kernel,
+  // over four orders, took 6 % more instructions, callgrind)
+  auto with_weigh = [&](auto o) {
+    constexpr int Ord = decltype(o)::value;
+    if (weigh)
+      dual_face_launch<D, Ord, true>(lo, hi, mf, nm, u, v, w, F, U, V, W, K, ord);
+    else
+      dual_face_launch<D, Ord, false>(lo, hi, mf, nm, u, v, w, F, U, V, W, K, ord);
+  };
+  if (ord == 1)
+    with_weigh(std::integral_constant<int, 1>{});
+  else if (ord == 3)
+    with_weigh(std::integral_constant<int, 3>{});
+  else if (ord == 2)
+    with_weigh(std::integral_constant<int, 2>{});
+  else
+    with_weigh(std::integral_constant<int, 0>{});
 }
 
 // The owned nodes from their two dual faces normal to D ("remap::momentum"; `finish` stores the

@@ -8,19 +8,44 @@
 
 namespace mp::remap {
 
-// Value of a cell (or node) quantity on the face it flows through: donor value plus a
-// van Leer-limited slope, time-centred by the Courant number `sigma` of the donor
-// (second order; `order == 1` gives donor cell). up / donor / down are ordered along the wind.
+// Value of a cell (or node) quantity on the face it flows through: the donor value plus a
+// limited slope S times (1 - sigma) / 2, time-centred by the Courant number `sigma` of the
+// donor. up / donor / down are ordered along the wind; a = donor - up, b = down - donor.
+//   order 1: donor cell (S = 0).
+//   order 2: van Leer's harmonic mean of the one-sided slopes, S = 2ab / (a + b) (second order).
+//   order 3: the Courant-weighted 3-point slope S3 = ((1 + sigma) a + (2 - sigma) b) / 3, bounded
+//            by van Leer's monotonicity constraint |S| <= 2 min(|a|, |b|) (docs/numerics.md,
+//            "Third-order advection"). S3 makes the face value the exact mean, over the slab
+//            of width sigma the face takes from the donor, of the parabola with the three cells'
+//            averages: third order in space and time on a uniform mesh where the bound does not
+//            bind (Leonard's QUICKEST, Comput. Methods Appl. Mech. Eng. 19 (1979) 59; the
+//            3-point gradient in a second-order Taylor expansion of the PAGOSA paper's "variant
+//            of van Leer's monotonic upwind scheme discussed by Youngs", Youngs 1982).
+//   order -2, -3 (verification only, Hydro::set_unlimited): the unbounded slopes, Fromm's
+//            (a + b) / 2 and S3, also at extrema; they oscillate at a discontinuity.
+// Both limited slopes lie inside the TVD region 0 <= S / a <= 2 min(1, b / a) (S3 is a weighted
+// mean of a and b, so the bound binds only where one difference exceeds about twice the other),
+// and both are 0 at an extremum (a b <= 0).
 KOKKOS_INLINE_FUNCTION Real face_value(Real up, Real donor, Real down, Real sigma, int order) {
   if (order == 1) return donor;
   const Real a = donor - up, b = down - donor;
+  if (order < 0)
+    return donor + Real(0.5) * (1 - sigma) *
+                       (order == -3 ? ((1 + sigma) * a + (2 - sigma) * b) * Real(1.0 / 3.0)
+                                    : Real(0.5) * (a + b));
   if (a * b <= 0) return donor;
+  if (order == 3) {
+    const Real s3 = ((1 + sigma) * a + (2 - sigma) * b) * Real(1.0 / 3.0);
+    const Real bound = 2 * mmin(mabs(a), mabs(b));
+    const Real slope = a > 0 ? mmin(s3, bound) : mmax(s3, -bound);
+    return donor + Real(0.5) * (1 - sigma) * slope;
+  }
   const Real slope = 2 * a * b / (a + b);  // van Leer's harmonic mean of the one-sided slopes
   return donor + Real(0.5) * (1 - sigma) * slope;
 }
 
 // Mass and internal-energy flux through a face with volume flux f (signed along the axis) out of
-// a donor cell of volume `pre`, from van Leer face values of density (Courant number |f|/pre)
+// a donor cell of volume `pre`, from the limited face values of density (Courant number |f|/pre)
 // and of specific energy (the mass Courant number). up / donor / down ordered along the wind.
 KOKKOS_INLINE_FUNCTION void donor_flux(Real f, Real pre, Real rho_up, Real rho_d, Real rho_dn,
                                        Real e_up, Real e_d, Real e_dn, int order, Real& mass,

@@ -15,7 +15,8 @@ using Choices = std::vector<std::pair<std::string, E>>;
 
 inline const Choices<hydro::Advection>& choices(hydro::Advection) {
   static const Choices<hydro::Advection> c{{"second", hydro::Advection::Second},
-                                           {"first", hydro::Advection::First}};
+                                           {"first", hydro::Advection::First},
+                                           {"third", hydro::Advection::Third}};
   return c;
 }
 inline const Choices<hydro::Remap>& choices(hydro::Remap) {

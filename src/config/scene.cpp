@@ -243,10 +243,16 @@ void read_regions(const DeckNode& root, Scene& s) {
       r.child("deposit").fail("the region holds no cell centre to deposit energy in; enlarge it");
     if (r.has("wave")) {
       const DeckNode wv = r.child("wave");
-      wv.expect_keys({"amplitude", "axis"});
+      wv.expect_keys({"amplitude", "axis", "shape"});
       reg.wave_amplitude = wv.get_real("amplitude", 0, 0.999);
-      const std::string axis = wv.get_enum("axis", {"x", "y", "z"}, "x");
-      reg.wave_axis = axis[0] - 'x';
+      const std::string axis = wv.get_enum("axis", {"x", "y", "z", "diagonal"}, "x");
+      reg.wave_axis = axis == "diagonal" ? 3 : axis[0] - 'x';
+      reg.wave_shape = wv.get_enum("shape", {"sine", "plateau"}, "sine") == "plateau" ? 1 : 0;
+      const auto& c = s.mesh.cells;
+      if (reg.wave_axis == 3 && !(c[0] == c[1] && c[1] == c[2]))
+        wv.child("axis").fail(
+            "a diagonal wave needs the same number of cells along every axis (its exact cell "
+            "means assume a cell of one width in box lengths)");
     }
     s.regions.push_back(reg);
     first = false;

@@ -49,8 +49,8 @@ struct MaterialSpec {
   std::string library;  // library entry it starts from ("" for a custom material)
   std::string eos = "ideal_gas";
   mp::eos::EosKind eos_kind = mp::eos::kIdealGas;  // the same, typed
-  double rho0 = 0;                         // reference density (0: none given)
-  std::map<std::string, double> params;    // EOS parameters, library values overridden
+  double rho0 = 0;                                 // reference density (0: none given)
+  std::map<std::string, double> params;            // EOS parameters, library values overridden
   std::string citation;
   bool has_p_min = false;  // tension cutoff given (materials[].p_min, Mbar, <= 0)
   double p_min = 0;
@@ -77,10 +77,13 @@ struct RegionSpec {
   std::array<double, 3> velocity_center{};
   double deposit =
       0;  // total internal energy added over the region (point blasts), split by volume
-  // A smooth density wave: rho * (1 + amplitude * sin(2 pi (x_axis - lo) / length of the box)),
-  // averaged exactly over each cell (for convergence studies). amplitude 0: none.
+  // A smooth density wave: rho * (1 + amplitude * P(s)), s = (x_axis - lo) / length of the box
+  // (axis 0, 1, 2) or the sum of the three (3: the diagonal), P the profile of wave_shape
+  // (driver/wave.hpp: 0 sine, 1 plateau), averaged exactly over each cell (for convergence
+  // studies). amplitude 0: none.
   double wave_amplitude = 0;
   int wave_axis = 0;
+  int wave_shape = 0;
 };
 
 // time.*: the step's controls (cfl, growth, dt_max) with the hydro's defaults, and the run's

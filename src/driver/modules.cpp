@@ -111,11 +111,25 @@ void add_modules(const Scene& s, const Mesh& mesh, hydro::Hydro& h) {
   if (b.on) h.add_module(std::make_unique<burn::Burn>(mesh, b, h.materials()));
 }
 
+namespace {
+// The run log's words for the advection choice.
+std::string advection_words(hydro::Advection a) {
+  switch (a) {
+    case hydro::Advection::First:
+      return "first-order donor cell";
+    case hydro::Advection::Second:
+      return "second-order van Leer";
+    case hydro::Advection::Third:
+      return "third-order (Courant-weighted 3-point slope, van Leer bound)";
+  }
+  return "";
+}
+}  // namespace
+
 std::vector<std::string> Simulation::modules() const {
   std::vector<std::string> m;
   m.push_back("hydro: staggered Lagrange (predictor-corrector) + remap, " +
-              std::string(scene_.numerics.advection == hydro::Advection::First ? "first-order donor cell"
-                                                               : "second-order van Leer") +
+              advection_words(scene_.numerics.advection) +
               " advection, " + name_of(scene_.numerics.remap) + " remap, KE fix " +
               (!scene_.numerics.ke_fix ? std::string("off")
                : scene_.materials.size() < 2

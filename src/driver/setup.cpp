@@ -7,6 +7,7 @@
 #include "core/math.hpp"
 #include "driver/modules.hpp"
 #include "driver/simulation.hpp"
+#include "driver/wave.hpp"
 #include "materials/geometry.hpp"
 
 namespace mp {
@@ -19,8 +20,8 @@ struct RegionDev {
   bool all;
   double rho, e, vel[3], vcenter[3];
   int radial;
-  double wave_amp, wave_lo, wave_len;
-  int wave_axis;
+  double wave_amp, wave_lo[3], wave_len[3];
+  int wave_axis, wave_shape;
   int mat;
 
   KOKKOS_INLINE_FUNCTION bool contains(double x, double y, double z) const {
@@ -31,17 +32,27 @@ struct RegionDev {
     return all ? 1.0 : geom::sampled_fraction(shape, lo, h, samples);
   }
   // Density and specific energy of the region in a cell: uniform, or a smooth entropy wave
-  // (density times 1 + amplitude * sin(2 pi (x - lo) / L), averaged exactly over the cell, at
-  // uniform pressure).
+  // (density times 1 + amplitude * P(s), P the wave's profile, driver/wave.hpp, averaged exactly
+  // over the cell, at uniform pressure).
   KOKKOS_INLINE_FUNCTION void state(const double lo[3], const double h[3], double& r,
                                     double& en) const {
     double wf = 1;
-    if (wave_amp > 0) {
+    if (wave_amp > 0 && wave_shape == wave::kSine && wave_axis != wave::kDiagonal) {
+      // (the sine along an axis in closed form)
       const int a = wave_axis;
-      const double kw = 2 * M_PI / wave_len;
-      const double x0 = lo[a] - wave_lo, x1 = x0 + h[a];
+      const double kw = 2 * M_PI / wave_len[a];
+      const double x0 = lo[a] - wave_lo[a], x1 = x0 + h[a];
       wf = 1 +
            wave_amp * (MP_KOKKOS_MATH::cos(kw * x0) - MP_KOKKOS_MATH::cos(kw * x1)) / (kw * h[a]);
+    } else if (wave_amp > 0) {
+      // along an axis, or the diagonal (the scene reader requires the same cells per box length
+      // along every axis there: s = x/Lx + y/Ly + z/Lz over a cube of width h/L)
+      const bool diag = wave_axis == wave::kDiagonal;
+      const int a = diag ? 0 : wave_axis;
+      double s0 = 0;
+      for (int d = 0; d < 3; ++d)
+        if (diag || d == a) s0 += (lo[d] - wave_lo[d]) / wave_len[d];
+      wf = 1 + wave_amp * wave::cell_mean(wave_shape, s0, h[a] / wave_len[a], diag ? 3 : 1);
     }
     r = rho * wf;
     en = wave_amp > 0 ? e / wf : e;
@@ -244,8 +255,11 @@ void Simulation::initialize() {
     d.radial = r.radial_velocity ? 1 : 0;
     d.wave_amp = r.wave_amplitude;
     d.wave_axis = r.wave_axis;
-    d.wave_lo = scene_.mesh.lo[r.wave_axis];
-    d.wave_len = scene_.mesh.hi[r.wave_axis] - scene_.mesh.lo[r.wave_axis];
+    d.wave_shape = r.wave_shape;
+    for (int a = 0; a < 3; ++a) {
+      d.wave_lo[a] = scene_.mesh.lo[a];
+      d.wave_len[a] = scene_.mesh.hi[a] - scene_.mesh.lo[a];
+    }
     d.mat = r.material_index;
     regs.push_back(d);
   }
