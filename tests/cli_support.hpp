@@ -19,6 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "paths.hpp"
+
 namespace mp::cli {
 
 namespace fs = std::filesystem;
@@ -28,10 +30,10 @@ inline std::string env_or(const char* name, const std::string& fallback) {
   return v && *v ? v : fallback;
 }
 inline std::string exe() {
-  return env_or("MINIPAGOSA_EXE", "./minipagosa");
+  return test::minipagosa_exe();
 }
 inline std::string source_dir() {
-  return env_or("MINIPAGOSA_SOURCE_DIR", "..");
+  return test::source_dir();
 }
 inline std::string config(const std::string& name) {
   return source_dir() + "/configs/" + name;

@@ -11,15 +11,11 @@
 #include "config/scene.hpp"
 #include "core/error.hpp"
 #include "driver/simulation.hpp"
+#include "paths.hpp"
 #include "precision.hpp"
 #include "strength/module.hpp"
 
 namespace mp::test {
-
-inline std::string source_dir() {
-  const char* s = std::getenv("MINIPAGOSA_SOURCE_DIR");
-  return s ? s : ".";
-}
 
 inline Scene load_scene(const std::string& name, const std::vector<std::string>& overrides = {}) {
   return read_scene(Deck::load(source_dir() + "/configs/" + name, overrides));

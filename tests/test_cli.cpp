@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "paths.hpp"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -27,10 +29,10 @@ std::string env_or(const char* name, const std::string& fallback) {
 }
 
 std::string exe() {
-  return env_or("MINIPAGOSA_EXE", "./minipagosa");
+  return mp::test::minipagosa_exe();
 }
 std::string source_dir() {
-  return env_or("MINIPAGOSA_SOURCE_DIR", "..");
+  return mp::test::source_dir();
 }
 
 std::string quote(const std::string& s) {

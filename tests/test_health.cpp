@@ -550,8 +550,7 @@ TEST(Health, ExecutableExits3WithValidSummary) {
   if (std::getenv("LD_LIBRARY_PATH"))
     cmd += " LD_LIBRARY_PATH=" + quote(env_or("LD_LIBRARY_PATH", ""));
   cmd += " OMP_NUM_THREADS=1 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive " +
-         quote(env_or("MINIPAGOSA_EXE", "./minipagosa")) + " " +
-         quote(test::source_dir() + "/configs/" + deck);
+         quote(test::minipagosa_exe()) + " " + quote(test::source_dir() + "/configs/" + deck);
   for (const auto& o : ov) cmd += " --set " + quote(o);
   cmd += " --output out > stdout.txt 2> stderr.txt < /dev/null";
   const int raw = std::system(cmd.c_str());

@@ -267,8 +267,8 @@ int run_logged(const std::vector<std::string>& ov, std::vector<LogLine>& lines) 
   if (std::getenv("LD_LIBRARY_PATH"))
     cmd += " LD_LIBRARY_PATH=" + quote(env_or("LD_LIBRARY_PATH", ""));
   cmd += " OMP_NUM_THREADS=1 OMP_PROC_BIND=false OMP_WAIT_POLICY=passive " +
-         quote(env_or("MINIPAGOSA_EXE", "./minipagosa")) + " " +
-         quote(test::source_dir() + "/configs/sod_x.yaml") + " --set output.log_every=1";
+         quote(test::minipagosa_exe()) + " " + quote(test::source_dir() + "/configs/sod_x.yaml") +
+         " --set output.log_every=1";
   for (const auto& o : ov) cmd += " --set " + quote(o);
   cmd += " --output out > log.txt 2>&1 < /dev/null";
   const int raw = std::system(cmd.c_str());

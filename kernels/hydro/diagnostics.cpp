@@ -233,9 +233,9 @@ Health Hydro::check() const {
         const auto ra = local(rho), ea = local(e), pa = local(p), ua = local(u), va = local(v),
                    wa = local(w);
         const bool cells = i < tx && j < ty;
-        constexpr Real big = std::numeric_limits<Real>::max();
+        constexpr Real big = kRealMax;
         // (en >= efloor || several) for every finite en: a NaN fails the finite test anyway
-        const Real emin = several ? -std::numeric_limits<Real>::infinity() : efloor;
+        const Real emin = several ? -kRealInfinity : efloor;
         constexpr int kChunk = 32;
         Real bad[kChunk];
         for (int kb = k0; kb < k1; kb += kChunk) {

@@ -122,7 +122,7 @@ struct ViscousTensorColumns {
     const Real sp = mabs(u(i, j, k)) + mabs(v(i, j, k)) + mabs(w(i, j, k)) +
                     mabs(u(i + 1, j + 1, k + 1)) + mabs(v(i + 1, j + 1, k + 1)) +
                     mabs(w(i + 1, j + 1, k + 1));
-    const Real s = 100 * std::numeric_limits<Real>::epsilon() * sp;
+    const Real s = 100 * kRealEpsilon * sp;
     const Real cc = c(i, j, k);
     return q(i, j, k) > rho(i, j, k) * (s * (cc + s) + Real(1e-12) * cc * cc);
   }

@@ -299,6 +299,8 @@ class Hydro {
   // whether the free-expansion rule acts (Options::free_expansion; single-material ideal gas,
   // split sweeps, no modules)
   bool free_expansion_acts() const { return expansion_gm1_ > 0; }
+  // The free-expansion work of the sweep along d given to its nodes (remap_sweep.cpp).
+  void expansion_impulse(int d);
   void exchange_nodes(const Field3& u, const Field3& v, const Field3& w);
   // After remap::momentum: whether a node on any rank raised State::ke_redo (with the option
   // on); if so the node losses are exchanged (their ghosts hold their owners' flags) and the
@@ -369,7 +371,6 @@ class Hydro {
   // gamma - 1 of the scene's ideal gas where the free-expansion rule acts (else 0)
   Real expansion_gm1_ = 0;
   bool expanded_ = false;  // whether the current sweep's faces did free-expansion work
-  void expansion_impulse(int d);
   bool expansion_worked();
   int reflective_face(int d, int s) const;
 };

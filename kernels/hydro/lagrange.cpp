@@ -295,6 +295,66 @@ struct CorrectorColumns {
   }
 };
 
+// The kernels of Hydro::lagrange's corrector pass (named functors: it is a generic lambda,
+// and nvcc allows no extended lambda inside one). MidFacesKernel: the mid-step geometry's face
+// fluxes of a column (MidFaceColumns over the fields).
+struct MidFacesKernel {
+  Field3 ub, vb, wb, u0, v0, w0, fx, fy, fz;
+  Real cx, cy, cz;
+  SweptFactors sf;
+  int ex, ey, ez;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1) const {
+    const auto U = local(ub);
+    const MidFaceColumns<decltype(U)> faces{
+        U,         local(vb), local(wb), local(u0), local(v0), local(w0), local(fx), local(fy),
+        local(fz), cx,        cy,        cz,        sf,        ex,        ey,        ez};
+    faces(i, j, k0, k1);
+  }
+};
+
+// The corrector over a column (CorrectorColumns over the fields), counting the non-positive
+// Lagrangian volumes of the owned cells (olo .. ohi) in n; it stores the high faces at the
+// block's high side (ex, ey, ez: the cell extents) unless the mid-step ones are stored.
+template <bool Update>
+struct CorrectorKernel {
+  Field3 ub, vb, wb, fx, fy, fz, pre, post, rho, e, ph, q0, q1, q2, q3, q4, q5, qw;
+  Kokkos::View<int**, MemSpace> qcol;
+  Real vol, cx, cy, cz;
+  StepWeights sw;
+  Real vmin;
+  int mid;
+  Kokkos::Array<int, 3> olo, ohi;
+  int ex, ey, ez;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k0, int k1, long& n) const {
+    const auto U = local(ub);
+    const CorrectorColumns<decltype(U), Update> col{
+        U,          local(vb),  local(wb),  local(fx),
+        local(fy),  local(fz),  local(pre), local(post),
+        local(rho), local(e),   local(ph),  sym6_local(q0, q1, q2, q3, q4, q5),
+        local(qw),  qcol(i, j), vol,        cx,
+        cy,         cz,         sw,         vmin,
+        mid};
+    // the Lagrangian volumes are checked in the owned cells only: the column in three
+    // runs, the middle one checked where the column is owned
+    const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
+    int b, f;
+    inner_run(k0, k1, olo[2], ohi[2], b, f);
+    col.template run<false>(i, j, k0, b);
+    if (col_owned)
+      n += col.template run<true>(i, j, b, f);
+    else
+      col.template run<false>(i, j, b, f);
+    col.template run<false>(i, j, f, k1);
+    // the high faces at the block's high side (the mid-step ones are stored)
+    if (mid) return;
+    if (i == ex - 1)
+      for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
+    if (j == ey - 1)
+      for (int k = k0; k < k1; ++k) col.y(i, j + 1, k) = col.fluxes(i, j, k).yh;
+    if (k1 == ez) col.z(i, j, ez) = col.fluxes(i, j, ez - 1).zh;
+  }
+};
+
 // The pressure of an EOS of kind K at (rho, e), for predictor_kernel.
 template <int K>
 struct PressureCut {
@@ -388,6 +448,8 @@ Health Hydro::lagrange(Real dt, long cycle) {
     const Real hx = g.dx[0], hy = g.dx[1], hz = g.dx[2], hdt = half;
     for_columns(
         "lagrange::acceleration", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+          // (captured here: nvcc allows an extended lambda no first capture in an if constexpr)
+          (void)node_update, (void)hx, (void)hy, (void)hz, (void)hdt;
           // the node's 8 cells as the columns (i - 1 + a, j - 1 + b) at k - 1 + c
           using Col = decltype(column(ph, i, j));  // a pointer, or a strided column (GPU)
           const auto cols = [&](const Field3& f) {
@@ -469,9 +531,9 @@ Health Hydro::lagrange(Real dt, long cycle) {
   // launches it before its per-material corrector (lagrange::volume_flux), which reads the
   // stored faces, as does the strength corrector.
   const Real vmin = vol;
-  const int olo[3] = {Mesh::ng, Mesh::ng, Mesh::ng};
-  const int ohi[3] = {Mesh::ng + mesh_.owned_cells(0), Mesh::ng + mesh_.owned_cells(1),
-                      Mesh::ng + mesh_.owned_cells(2)};
+  const Kokkos::Array<int, 3> olo{Mesh::ng, Mesh::ng, Mesh::ng};
+  const Kokkos::Array<int, 3> ohi{Mesh::ng + mesh_.owned_cells(0), Mesh::ng + mesh_.owned_cells(1),
+                                  Mesh::ng + mesh_.owned_cells(2)};
   long bad = 0;
   auto corrector = [&](const char* name, auto update) {
     constexpr bool Update = decltype(update)::value;
@@ -487,49 +549,15 @@ Health Hydro::lagrange(Real dt, long cycle) {
     if (mid) {
       // the mid-step geometry's face fluxes, each face once (the corrector reads them)
       const SweptFactors sf{dt * dt, g.dx[0], g.dx[1], g.dx[2]};
-      const auto u0c = u0_, v0c = v0_, w0c = w0_;
       for_columns(
-          "lagrange::mid_faces", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
-            const auto U = local(ub);
-            const MidFaceColumns<decltype(U)> faces{U,          local(vb),  local(wb), local(u0c),
-                                                    local(v0c), local(w0c), local(fx), local(fy),
-                                                    local(fz),  cx,         cy,        cz,
-                                                    sf,         ex,         ey,        ez};
-            faces(i, j, k0, k1);
-          });
+          "lagrange::mid_faces", lo, hi,
+          MidFacesKernel{ub, vb, wb, u0_, v0_, w0_, fx, fy, fz, cx, cy, cz, sf, ex, ey, ez});
     }
     // (k-columns, core/columns.hpp)
-    reduce_columns(
-        name, lo, hi,
-        KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& n) {
-          const auto U = local(ub);
-          const CorrectorColumns<decltype(U), Update> col{
-              U,          local(vb),  local(wb),  local(fx),
-              local(fy),  local(fz),  local(pre), local(post),
-              local(rho), local(e),   local(ph),  sym6_local(q0, q1, q2, q3, q4, q5),
-              local(qw),  qcol(i, j), vol,        cx,
-              cy,         cz,         sw,         vmin,
-              mid};
-          // the Lagrangian volumes are checked in the owned cells only: the column in three
-          // runs, the middle one checked where the column is owned
-          const bool col_owned = i >= olo[0] && i < ohi[0] && j >= olo[1] && j < ohi[1];
-          int b, f;
-          inner_run(k0, k1, olo[2], ohi[2], b, f);
-          col.template run<false>(i, j, k0, b);
-          if (col_owned)
-            n += col.template run<true>(i, j, b, f);
-          else
-            col.template run<false>(i, j, b, f);
-          col.template run<false>(i, j, f, k1);
-          // the high faces at the block's high side (the mid-step ones are stored)
-          if (mid) return;
-          if (i == ex - 1)
-            for (int k = k0; k < k1; ++k) col.x(i + 1, j, k) = col.fluxes(i, j, k).xh;
-          if (j == ey - 1)
-            for (int k = k0; k < k1; ++k) col.y(i, j + 1, k) = col.fluxes(i, j, k).yh;
-          if (k1 == ez) col.z(i, j, ez) = col.fluxes(i, j, ez - 1).zh;
-        },
-        bad);
+    const CorrectorKernel<Update> kernel{ub, vb, wb,   fx,  fy,  fz,  pre, post, rho, e,  ph,
+                                         q0, q1, q2,   q3,  q4,  q5,  qw,  qcol, vol, cx, cy,
+                                         cz, sw, vmin, mid, olo, ohi, ex,  ey,   ez};
+    reduce_columns(name, lo, hi, kernel, bad);
     volumes_ready_ = true;
     volumes_for_ = first;
   };

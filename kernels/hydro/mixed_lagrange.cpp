@@ -299,7 +299,7 @@ struct EosTable {
   }
   // the number of parameters kind K reads (all for K = -1, any kind)
   template <int K>
-  static constexpr int params() {
+  KOKKOS_INLINE_FUNCTION static constexpr int params() {
     return K == eos::kIdealGas       ? 1
            : K == eos::kStiffenedGas ? 2
            : K == eos::kMieGruneisen ? 4
@@ -353,7 +353,7 @@ struct PurePredictor {
   EosTable tab;
   IntField3 mat;
   Field3 u, v, w, rho, e, p;
-  std::array<Field3, 6> qt;
+  Kokkos::Array<Field3, 6> qt;         // (std::array's operator[] is a host function to nvcc)
   Kokkos::View<int**, MemSpace> qcol;  // (columns without a viscous stress: no viscous work)
   Field3 ph, bf;
   Real ax, ay, az, vol;
@@ -468,23 +468,24 @@ void Hydro::mm_predictor(Real vol, const std::array<Real, 3>& f) {
   const mat::MaterialState& mm = *mm_;
   with_pure_columns(mm, bh, "lagrange::predictor", all_lo(), all_hi(mesh_),
                     MixedPredictor{mats, bh, Q, ph, rho, u, v, w, ax, ay, az, vol}, [&](auto burn) {
-                      return PurePredictor<decltype(burn)::value>{EosTable(mats),
-                                                                  mm.compact().mat,
-                                                                  u,
-                                                                  v,
-                                                                  w,
-                                                                  rho,
-                                                                  e,
-                                                                  p,
-                                                                  qt,
-                                                                  s_.qcol,
-                                                                  ph,
-                                                                  bf,
-                                                                  ax,
-                                                                  ay,
-                                                                  az,
-                                                                  vol,
-                                                                  bh.material};
+                      return PurePredictor<decltype(burn)::value>{
+                          EosTable(mats),
+                          mm.compact().mat,
+                          u,
+                          v,
+                          w,
+                          rho,
+                          e,
+                          p,
+                          {qt[0], qt[1], qt[2], qt[3], qt[4], qt[5]},
+                          s_.qcol,
+                          ph,
+                          bf,
+                          ax,
+                          ay,
+                          az,
+                          vol,
+                          bh.material};
                     });
 }
 

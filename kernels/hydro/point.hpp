@@ -94,8 +94,7 @@ KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
   for (int sweep = 0; sweep < 8; ++sweep) {
     const Real off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
     const Real diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-    if (!(off > std::numeric_limits<Real>::epsilon() * std::numeric_limits<Real>::epsilon() * diag))
-      break;
+    if (!(off > kRealEpsilon * kRealEpsilon * diag)) break;
     for (int pq = 0; pq < 3; ++pq) {
       const int p = pq == 2 ? 1 : 0, q = pq == 0 ? 1 : 2;
       const Real apq = a[p][q];
@@ -134,7 +133,7 @@ KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d, Real ev[3]) {
   const Real tr = d.xx + d.yy + d.zz;
   const Real den = 3 * lmax - tr;
   const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
-  if (!(den > 64 * std::numeric_limits<Real>::epsilon() * scale)) {
+  if (!(den > 64 * kRealEpsilon * scale)) {
     const Real t = Real(1) / 3;
     return {t, t, t, 0, 0, 0};
   }

@@ -112,12 +112,15 @@ std::vector<double> MaterialState::material_masses() const {
         },
         Kokkos::Sum<SumN<kMaxMaterials>>(pure));
     const int ey = ey_, ez = ez_;
+    // (the box as a Kokkos::Array: std::array's operator[] is a host function to nvcc)
+    const Kokkos::Array<int, 3> blo{lo[0], lo[1], lo[2]}, bhi{hi[0], hi[1], hi[2]};
     Kokkos::parallel_reduce(
         "matter::masses[mixed]", Policy1(0, d.nmixed),
         KOKKOS_LAMBDA(int r, SumN<kMaxMaterials>& acc) {
           const int lin = d.mixed(r);
           const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
-          if (i < lo[0] || i >= hi[0] || j < lo[1] || j >= hi[1] || k < lo[2] || k >= hi[2]) return;
+          if (i < blo[0] || i >= bhi[0] || j < blo[1] || j >= bhi[1] || k < blo[2] || k >= bhi[2])
+            return;
           const int f = d.first(i, j, k);
           for (int q = f; q < f + d.nm(i, j, k); ++q)
             acc.v[d.smat(q)] += double(d.salpha(q)) * double(d.srho(q)) * vol;
@@ -332,7 +335,7 @@ long MaterialState::first_bad(int& material, int& what) const {
         KOKKOS_LAMBDA(int i, int j, int k0, int k1, long& acc) {
           const auto mt = local(d.mat);
           const auto ra = local(crho), ea = local(ce);
-          constexpr Real big = std::numeric_limits<Real>::max();
+          constexpr Real big = kRealMax;
           constexpr int kChunk = 32;
           Real bad[kChunk];
           for (int kb = k0; kb < k1; kb += kChunk) {

@@ -187,6 +187,7 @@ void MaterialState::assign(const std::string& name, const Source& src) {
     long moved = 0;
     // a changed cell that the shortcut below did not write
     auto general = KOKKOS_LAMBDA(int i, int j, int k, long& acc) {
+      (void)src;  // (captured here: nvcc allows no first capture in an if constexpr)
       // the new content as entries c < nc of material ids[c], ascending: every material, or a
       // Sparse source's list (the materials it may hold; the others absent)
       Real a[kMaxMaterials], r[kMaxMaterials], en[kMaxMaterials];

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include "core/types.hpp"
@@ -14,6 +15,12 @@ namespace mp {
 #else
 #define MP_KOKKOS_MATH Kokkos::Experimental
 #endif
+
+// std::numeric_limits<Real>'s values as constants for kernels: its member functions are host
+// functions to nvcc, which device code may not call; a constexpr scalar it may read.
+inline constexpr Real kRealEpsilon = std::numeric_limits<Real>::epsilon();
+inline constexpr Real kRealMax = std::numeric_limits<Real>::max();
+inline constexpr Real kRealInfinity = std::numeric_limits<Real>::infinity();
 
 KOKKOS_INLINE_FUNCTION Real msqrt(Real x) {
   return MP_KOKKOS_MATH::sqrt(x);
