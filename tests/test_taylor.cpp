@@ -101,13 +101,13 @@ TaylorErrors check_model(const char* model, int n) {
   if (!run.ok) return {};
   print(model, n, run);
   // The rod has stopped: at most 1e-3 of the impact's kinetic energy is left (observed
-  // 2026-12-06 at R/8: Johnson-Cook 1.95e-4, Steinberg-Guinan 4.04e-4, Zerilli-Armstrong
-  // 9.9e-5, the elastic ringing of the recovered rod).
+  // 2026-12-06: Johnson-Cook 2.08e-4 at R/6, Steinberg-Guinan 4.14e-4 at R/6, Zerilli-Armstrong
+  // 9.9e-5 at R/6 and R/8, the elastic ringing of the recovered rod).
   EXPECT_LT(run.ke_left, 1e-3) << model << " R/" << n;
   // No copper left the mesh (the box is sized so the rod stays inside) and, at the default
   // min_fraction, none is handed to the air: the copper's mass is kept to round-off (observed
-  // 1.0e-14 and 1.1e-14 at R/8 in double; bound 1e-12, a few thousand cycles of the flux sums'
-  // roundings). With the deck's former min_fraction 1e-4, 7.3e-4 to 8.9e-4 went to the air.
+  // at most 1.1e-14 in double; bound 1e-12, a few thousand cycles of the flux sums' roundings).
+  // With the deck's former min_fraction 1e-4, 7.3e-4 to 8.9e-4 went to the air.
   EXPECT_LT(std::abs(run.cu_lost), test::roundoff(1e-12)) << model << " R/" << n;
   const TaylorErrors e{err(run.shape.length, tx::kLengthFinal),
                        err(run.shape.footprint, tx::kFootprintDiameter)};
@@ -141,20 +141,22 @@ TEST(Taylor, ZerilliArmstrongCopperWithinFivePercentAtTwoResolutions) {
 }
 
 // Pins, not verification: Johnson-Cook and Steinberg-Guinan miss the 5 % target (what
-// limits them: docs/numerics.md, "Taylor anvil"; their footprint error does not fall with the
-// zone: Johnson-Cook +3.8 % at R/6, +5.0 % at R/8). Run at R/6 (a third of R/8's cost); the
-// bounds hold the present errors plus about 1.5 points so that a change shows. Observed at R/6
-// (2026-12-06, double): see each test.
+// limits them: docs/numerics.md, "Taylor anvil"). Run at R/6 since 2026-12-06 (under half of
+// R/8's cost; at R/8 they were asserted as "MatchesTheExperiment" at 6.5-7.5 %); the bounds hold
+// the present errors plus about 1.5 points so that a change shows. Observed (2026-12-06, double,
+// 2 ranks) at R/6 and, for comparison, R/8: Johnson-Cook L +6.38 % / +6.23 %, D +3.11 % /
+// +5.04 % (the footprint's error grows with the zone); Steinberg-Guinan L +5.16 % / +4.96 %,
+// D -7.00 % / -6.56 %.
 TEST(TaylorPin, JohnsonCookCopperMissesTheFivePercentTarget) {
   const TaylorErrors e = check_model("johnson_cook", kCoarse);
-  // observed L +X %, D +Y % (bounds 7.5 %, 5.5 %); target 5 %
-  EXPECT_LT(std::abs(e.length), 0.075) << "pin; the issue's target is 5 %";
-  EXPECT_LT(std::abs(e.footprint), 0.055) << "pin; the issue's target is 5 %";
+  // observed L +6.38 % (bound 8 %), D +3.11 % (bound 4.5 %); the target 5 % each
+  EXPECT_LT(std::abs(e.length), 0.08) << "pin; the issue's target is 5 %";
+  EXPECT_LT(std::abs(e.footprint), 0.045) << "pin; the issue's target is 5 %";
 }
 
 TEST(TaylorPin, SteinbergGuinanCopperMissesTheFivePercentTarget) {
   const TaylorErrors e = check_model("steinberg_guinan", kCoarse);
-  // observed L +X %, D -Y % (bounds 6.5 %, 8 %); target 5 %
+  // observed L +5.16 % (bound 6.5 %), D -7.00 % (bound 8.5 %); the target 5 % each
   EXPECT_LT(std::abs(e.length), 0.065) << "pin; the issue's target is 5 %";
-  EXPECT_LT(std::abs(e.footprint), 0.08) << "pin; the issue's target is 5 %";
+  EXPECT_LT(std::abs(e.footprint), 0.085) << "pin; the issue's target is 5 %";
 }
