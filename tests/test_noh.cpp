@@ -91,7 +91,7 @@ NohMeasure noh_at(int n) {
 TEST(Noh, PlateauConvergesFrom32To48Cubed) {
   const NohMeasure a = noh_at(32);
   const NohMeasure b = noh_at(48);
-  ASSERT_GT(a.cells, 50);  // (observed A32 and A48)
+  ASSERT_GT(a.cells, 50);  // (observed 65 and 227)
   EXPECT_LT(std::abs(a.plateau), 0.10);
   EXPECT_LT(std::abs(b.plateau), 0.07);
   EXPECT_LT(std::abs(b.plateau), 0.85 * std::abs(a.plateau));
