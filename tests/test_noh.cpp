@@ -31,7 +31,8 @@ struct NohMeasure {
   double shell[6] = {0, 0, 0, 0, 0, 0};
 };
 
-// The deck at h = 1/n; with `box` < 1, on the smaller octant [0, box]^3 (box n whole cells).
+// The deck at h = 1/per_unit; with `box` < 1, on the smaller octant [0, box]^3 (box x per_unit
+// whole cells).
 // Every parcel inside the shock at t = 0.6 started within R + t = 0.8 of the origin (unit
 // inflow speed), inside the sphere the box [0, 0.875]^3 holds; the gas that enters through its
 // outflow faces after t = 0 is still ahead of the shock at the end (r > 0.875 - 0.6 = 0.275 >
