@@ -99,15 +99,17 @@ ShockRun run_shock(int n, double up, double t_end) {
 
 // The cited unreacted Hugoniot, Us = c0 + s up (pbx9404_unreacted: c0 0.2423 cm/us, s 1.883,
 // rho0 1.844), in the cycle: a 3.1 GPa shock (up = 0.05 cm/us, Us = 0.33645 cm/us) through
-// unburnt explosive, to t = 1.5 us. Observed: Us -0.243 % / -0.125 % at 200 / 400 cells (first
-// order: the shock's smeared start at the wall), the shocked pressure rho0 Us up to +0.008 % /
-// +0.002 %; bounds 0.5 % each and the Us error falling.
+// unburnt explosive, to t = 1.5 us. Observed (2026-12-06, double; float the same to 0.001 %):
+// Us -0.243 % / -0.125 % at 200 / 400 cells (first order: the shock's smeared start at the
+// wall), bounds 0.4 % / 0.2 % (1.6x each); the shocked pressure against rho0 Us up (the jump
+// condition with the run's own Us) +0.008 % / +0.002 %, bound 0.05 % (6x and 25x; was 0.5 %,
+// 60x, issue #55); both errors falling.
 TEST(BurnUnreacted, ShockInUnburntExplosiveFollowsTheCitedHugoniot) {
   const auto* u = materials::find_material("pbx9404_unreacted");
   ASSERT_NE(u, nullptr);
   const double rho0 = u->rho0, c0 = u->param("c0"), s = u->param("s");
   const double up = 0.05, us = c0 + s * up, p1 = rho0 * us * up;
-  double prev = 0;
+  double prev = 0, prev_p = 0;
   for (int n : {200, 400}) {
     const ShockRun r = run_shock(n, up, 1.5);
     const double err = r.us / us - 1, perr = r.p1 / p1 - 1;
@@ -115,13 +117,15 @@ TEST(BurnUnreacted, ShockInUnburntExplosiveFollowsTheCitedHugoniot) {
         "unreacted PBX 9404, up %.3f cm/us, %d cells: Us %.5f cm/us (Hugoniot %.5f, %+.3f %%), "
         "p1 %.5f Mbar (rho0 Us up %.5f, %+.3f %%), largest F %.1f\n",
         up, n, r.us, us, 100 * err, r.p1, p1, 100 * perr, r.fmax);
-    EXPECT_LT(std::abs(err), 0.005);
-    EXPECT_LT(std::abs(perr), 0.005);
+    EXPECT_LT(std::abs(err), n == 200 ? 0.004 : 0.002);
+    EXPECT_LT(std::abs(perr), 0.0005);
     EXPECT_EQ(r.fmax, 0.0);  // nothing burnt
     if (prev > 0) {
       EXPECT_LT(std::abs(err), prev);
+      EXPECT_LT(std::abs(perr), prev_p);
     }
     prev = std::abs(err);
+    prev_p = std::abs(perr);
   }
 }
 

@@ -114,6 +114,11 @@ void compare_rank_counts(const Scene& scene) {
   }
   expect_same(one.burn, two.burn, "burn fraction: 1 vs 2");
   expect_same(one.burn, four.burn, "burn fraction: 1 vs 4");
+  // a burn compared where nothing burnt proves nothing: with a burn module, some cell has burnt
+  if (!one.burn.empty()) {
+    EXPECT_GT(*std::max_element(one.burn.begin(), one.burn.end()), 0.0)
+        << scene.name << ": nothing burnt, the ranks' burn fractions compare only zeros";
+  }
   double eps_max = 0;
   for (std::size_t q = 0; q < one.strength.size(); ++q) {
     expect_same(one.strength[q], two.strength[q], "strength " + std::to_string(q) + ": 1 vs 2");

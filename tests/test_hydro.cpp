@@ -486,9 +486,13 @@ TEST(Extremes, LeBlancStaysPositive) {
 // 0.5 (2026-12-05): +5.5 / +5.1 cells, +12.1 / +9.0 %; with the default 0.7 (2026-12-06,
 // double): +2.9 / +1.4 cells, +9.3 / +7.4 % (tools/riemann_check.py gives the same; -1.8, -2.1
 // and +3.0 cells at 360, 720 and 1600: not monotone in N, which start-up faces cross the ratio
-// depends on the mesh). Asserted: the issue's bounds, the shock within 5 cells at both and the
-// contact energy within 10 % at 800 (11 % at 400, was 13 %), total energy to round-off.
-TEST(Extremes, LeBlancShockAndContactEnergy) {
+// depends on the mesh). Asserted: the issue's bounds, the shock within 5 cells at both (observed
+// +2.9 / +1.4) and the contact energy within 10 % at 800 (observed +7.4 %; 11 % at 400,
+// observed +9.3 %, was 13 %), total energy to round-off.
+// A pin, not a verification (issue #55): these are the meshes the free-expansion ratio 0.7 was
+// chosen on, the errors are not monotone in N, and no convergence is shown (the convergence test
+// this replaced stopped holding). Issue #16's target is what each message names.
+TEST(ExtremesPin, LeBlancShockAndContactEnergyOnTheTuningMeshes) {
   const double g = 5.0 / 3.0;
   const exact::Riemann rs({1.0, 0.0, (g - 1) * 0.1}, {1e-3, 0.0, (g - 1) * 1e-10}, g, g);
   const double t = 6, exact_shock = 3 + t * rs.right_head_speed();
@@ -514,8 +518,8 @@ TEST(Extremes, LeBlancShockAndContactEnergy) {
         "LeBlanc, %d cells: shock at %.4f (exact %.4f), %+.1f cells; contact e peak %.4f "
         "against e*R %.4f (%+.1f %%); total energy change %.2e\n",
         cells[n], x_shock, exact_shock, shock_cells, e_peak, e_star, 100 * over, de);
-    EXPECT_LE(std::abs(shock_cells), 5.0);
-    EXPECT_LE(over, contact_bound[n]);
+    EXPECT_LE(std::abs(shock_cells), 5.0) << "pin; issue #16's target: the shock within 5 cells";
+    EXPECT_LE(over, contact_bound[n]) << "pin; issue #16's target: contact energy within 10 %";
     EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   }
 }
@@ -532,7 +536,10 @@ TEST(Extremes, LeBlancShockAndContactEnergy) {
 // exact solution holds only 1.1e-6 of mass beyond rho = 1e-4, under 1/500 of one initial cell's
 // mass even at 1600 cells, where the crossing is +37 cells (docs/numerics.md). Total energy to
 // round-off.
-TEST(Extremes, NearVacuumFrontAndPeakVelocity) {
+// A pin, not a verification (issue #55): asserted on the meshes the free-expansion ratio was
+// chosen on, and the front does not converge (+37 cells at 1600). Issue #16's target is what
+// each message names.
+TEST(ExtremesPin, NearVacuumFrontAndPeakVelocityOnTheTuningMeshes) {
   const double g = 1.4;
   const exact::Riemann rs({1.0, 0.0, 1.0}, {1e-8, 0.0, 1e-10}, g, g);
   // the exact position of rho = 1e-4 in the left fan (bisection in x / t on the sampled density)
@@ -559,8 +566,10 @@ TEST(Extremes, NearVacuumFrontAndPeakVelocity) {
         "near vacuum, %d cells: rho = 1e-4 at %+.1f cells from exact %.4f; peak u %.4f against "
         "u* %.4f (%+.1f %%); total energy change %.2e\n",
         cells[n], front, x_exact, peak, rs.u_star(), 100 * du, de);
-    EXPECT_LE(std::abs(front), n == 0 ? 5.0 : 8.0);
-    EXPECT_LE(std::abs(du), 0.10);
+    // observed -3.3 / -0.8 cells (bounds 5 / 8), u +3.9 / -0.2 % (bound 10 %)
+    EXPECT_LE(std::abs(front), n == 0 ? 5.0 : 8.0)
+        << "pin; issue #16's target: the rho = 1e-4 front within 5 cells";
+    EXPECT_LE(std::abs(du), 0.10) << "pin; issue #16's target: the peak velocity within 10 % of u*";
     EXPECT_LT(std::abs(de), test::energy_roundoff(r.result.cycles));
   }
 }

@@ -331,8 +331,8 @@ TEST(MultiMaterial, MinFractionFloorIsAppliedAndLogged) {
   EXPECT_EQ(hydro::kMinFractionFloor, floor);
   EXPECT_EQ(hydro::effective_min_fraction(0.0), floor);
   EXPECT_EQ(hydro::effective_min_fraction(1e-3), 1e-3);
-  EXPECT_GT(double(Real(1) - Real(floor)), 0.0);
-  EXPECT_LT(Real(1) - Real(floor), Real(1));  // 1 - floor is held below 1
+  // (1 - floor < 1 in Real follows from floor = 4 ulps, pinned above; the two asserts that
+  // restated it on the local `floor` could not fail and were dropped, issue #55)
   const auto line = [](const std::string& value) {
     RunSettings settings;
     settings.quiet = true;
@@ -565,61 +565,62 @@ const WaterAir& water_air(const std::string& closure, int cells) {
 // tension bounded by 5 % of the initial water pressure at 200 cells (the exact solution has
 // none; the bound is the criterion, not this scheme's observation of 2.3 %).
 TEST(MultiMaterial, WaterAirShockTubeStarStateAndBoundedTension) {
-  // Observed at 200 cells (2026-12-02; double, float the same to 3 digits): equal strain
-  // p -0.17 %, u +0.12 %, air e error 56 %, shock +2.13 cells, interface +0.02 cells;
-  // relaxation p +0.11 %, u +0.09 %, air e error 7.5 %, shock +0.25 cells, interface
-  // +0.03 cells; 1 mixed cell each. The star-state bounds here are the accuracy issue #16
-  // records for this problem (p*, u* within 0.3 %), with margin; WaterAirStarStateConverges
-  // shows the errors falling from 200 to 400 cells.
-  const WaterAir& es = water_air("equal_strain", 200);
-  const WaterAir& rx = water_air("relaxation", 200);
-  for (const WaterAir* w : {&es, &rx}) {
-    const char* name = w == &es ? "equal strain" : "relaxation";
-    EXPECT_TRUE(w->finite) << name;
-    EXPECT_GT(w->rho_min, 0) << name;
-    EXPECT_GT(w->e_min, 0) << name;
-    // the air and the interface cells never go below zero pressure
-    EXPECT_GT(w->p_air_min, 0) << name;
-    EXPECT_GT(w->p_mixed_min, 0) << name;
-    EXPECT_GE(w->mixed, 1) << name;
-    EXPECT_LE(w->mixed, 2) << name;
-    // Pure water: the start-up error of the sharp diaphragm rides the u - c characteristic
-    // that coincides with the rarefaction tail (single-material Sod has the same -0.9 % density
-    // dip there; docs/numerics.md); water's stiffness turns it into p = -2.3e-4 Mbar with
-    // equal strain, a tension of 2.3 % of the initial pressure (-1.8e-4 with relaxation;
-    // -1.8e-4 and -1.4e-4 at 400 cells). Bound it well inside the stiffened-gas validity limit
-    // p > -p_inf = -6e-3 Mbar. Reference Lagrangian Godunov schemes undershoot here too, by
-    // less (tools/water_air_godunov.py: -2.3e-5 first order, -7.1e-6 MUSCL-Hancock at 200
-    // cells, against p* = 4.8e-6).
-    EXPECT_GT(w->p_water_min, -0.05 * 1e-2) << name;
-    // Interface at the exact contact: 0.15 cells (5x the larger observation) is a contact
-    // speed error of 0.15 dx / (u* t) = 0.64 %, within the star-speed bound; was 2 cells
-    // (67-100x the observations, a speed error of 8.5 %).
-    EXPECT_LT(std::abs(w->interface - w->contact), 0.15 * w->dx) << name;
-    // Star velocity: 0.4 % (#16's 0.3 % with a third for margin; observed +0.12 %, +0.09 %).
-    // Was 1 % (9x, 11x).
-    EXPECT_LT(std::abs(w->u_mean / w->u_star - 1), 0.004) << name;
+  // Observed at 200 / 400 cells (2026-12-06, double): equal strain p +0.17 / -0.01 %, u +0.13 /
+  // +0.08 %, air e error 2.8 / 2.1 %, shock -0.00 / +0.02 cells, interface +0.02 / +0.02 cells;
+  // relaxation p +0.19 / -0.01 %, u +0.10 / +0.06 %, air e error 0.9 / 0.6 %, shock -0.09 /
+  // -0.07 cells, interface +0.03 / +0.03 cells; 1 mixed cell each. The star-state bounds here
+  // are the accuracy issue #16 records for this problem (p*, u* within 0.3 %), with margin, at
+  // both resolutions; WaterAirStarStateConverges shows the star velocity's error falling.
+  for (const int cells : {200, 400}) {
+    const WaterAir& es = water_air("equal_strain", cells);
+    const WaterAir& rx = water_air("relaxation", cells);
+    for (const WaterAir* w : {&es, &rx}) {
+      const std::string name =
+          std::string(w == &es ? "equal strain, " : "relaxation, ") + std::to_string(cells);
+      EXPECT_TRUE(w->finite) << name;
+      EXPECT_GT(w->rho_min, 0) << name;
+      EXPECT_GT(w->e_min, 0) << name;
+      // the air and the interface cells never go below zero pressure
+      EXPECT_GT(w->p_air_min, 0) << name;
+      EXPECT_GT(w->p_mixed_min, 0) << name;
+      EXPECT_GE(w->mixed, 1) << name;
+      EXPECT_LE(w->mixed, 2) << name;
+      // Pure water: the start-up error of the sharp diaphragm rides the u - c characteristic
+      // that coincides with the rarefaction tail (single-material Sod has the same -0.9 % density
+      // dip there; docs/numerics.md); water's stiffness turns it into a tension: observed
+      // -2.3e-4 / -1.8e-4 Mbar with equal strain, -1.9e-4 / -1.5e-4 with relaxation at 200 / 400
+      // cells (2.3 % of the initial pressure at most). Bound: 5 % of the initial water pressure,
+      // -5e-4 (2.2x the largest), well inside the stiffened-gas validity limit p > -p_inf =
+      // -6e-3 Mbar. Reference Lagrangian Godunov schemes undershoot here too, by less
+      // (tools/water_air_godunov.py: -2.3e-5 first order, -7.1e-6 MUSCL-Hancock at 200 cells,
+      // against p* = 4.8e-6).
+      EXPECT_GT(w->p_water_min, -0.05 * 1e-2) << name;
+      // Interface at the exact contact: 0.15 cells (5x the largest observation, 0.03) is a
+      // contact speed error of 0.15 dx / (u* t) = 0.64 % at 200 cells, within the star-speed
+      // bound; was 2 cells.
+      EXPECT_LT(std::abs(w->interface - w->contact), 0.15 * w->dx) << name;
+      // Star velocity: 0.4 % (#16's 0.3 % with a third for margin; observed at most +0.13 %).
+      EXPECT_LT(std::abs(w->u_mean / w->u_star - 1), 0.004) << name;
+      // Shocked-air pressure: 0.4 % as for u (observed at most 0.19 %).
+      EXPECT_LT(std::abs(w->p_air / w->p_star - 1), 0.004) << name;
+      // The shocked air's energy (the wall heating beside the interface): within 5 % (observed
+      // 2.8 / 2.1 % with equal strain, 0.9 / 0.6 % with relaxation; 56 % with equal strain
+      // before the closure's fixes of 2026-12, when a pin held it) and the air shock within
+      // one cell of the exact one (observed at most 0.09 cells; +2.13 before).
+      EXPECT_LT(w->e_air_err, 0.05) << name;
+      EXPECT_LT(std::abs(w->shock - w->shock_exact), 1 * w->dx) << name;
+    }
+    // the wall heating falls with the mesh (2.8 -> 2.1 %, 0.9 -> 0.6 %)
+    if (cells == 400) {
+      EXPECT_LT(es.e_air_err, water_air("equal_strain", 200).e_air_err);
+      EXPECT_LT(rx.e_air_err, water_air("relaxation", 200).e_air_err);
+    }
   }
-  // Shocked-air pressure: equal strain 1 % (observed -0.17 %, 5.9x: its wall heating leaves
-  // the shocked air's plateau uneven); relaxation 0.4 % as for u (observed +0.11 %, 3.6x). Was
-  // 1 % for both.
-  EXPECT_LT(std::abs(es.p_air / es.p_star - 1), 0.01);
-  EXPECT_LT(std::abs(rx.p_air / rx.p_star - 1), 0.004);
-  // Relaxation removes most of the wall heating of the air beside the interface and puts the
-  // air shock back where it belongs. Observed: e error 7.5 % (bound 20 %, 2.7x) against 56 %
-  // with equal strain (ratio 0.13, bound 0.5); shock +0.25 cells (bound 1 cell, 4x) against
-  // +2.13 (bound 3 cells, 1.4x: equal strain's wall heating pushes the air shock ahead, the
-  // bound says by less than 3 cells); L1(u) 5.67e-3 against 1.38e-2 (ordering only).
-  EXPECT_LT(rx.e_air_err, 0.2);
-  EXPECT_LT(rx.e_air_err, 0.5 * es.e_air_err);
-  EXPECT_LT(std::abs(rx.shock - rx.shock_exact), 1 * rx.dx);
-  EXPECT_LT(std::abs(es.shock - es.shock_exact), 3 * es.dx);
-  EXPECT_LT(rx.l1u, es.l1u);
 }
 
 // The water-air star state against the exact solution at 200 and 400 cells, both closures:
 // the errors of the star velocity (mean over the star region) and the star pressure (mean of
-// the shocked air) printed at each, falling, and bounded at 400 cells.
+// the shocked air) printed at each; the velocity's falling, both bounded at 400 cells.
 TEST(MultiMaterial, WaterAirStarStateConverges) {
   for (const std::string closure : {"equal_strain", "relaxation"}) {
     const WaterAir& c = water_air(closure, 200);
@@ -634,17 +635,16 @@ TEST(MultiMaterial, WaterAirStarStateConverges) {
     // 100 to 200 (measured 2026-12-02 at 100, 200, 400, 800 cells: equal strain +0.157,
     // +0.116, +0.076, +0.041 %; relaxation +0.106, +0.092, +0.060, +0.032 %): the plateau mean
     // carries the start-up error of the sharp diaphragm, which decays slowly. Observed ratios
-    // 0.66 for both; the bound 0.8 (order 0.32), 1.2x above them, says the error falls by
-    // more than the plateau's noise, not at a rate. The shocked-air pressure error drops to the
-    // plateau mean's noise by 400 cells (equal strain -0.81 % at 100 -> -0.17 % -> +0.011 % ->
-    // +0.011 % at 800; relaxation +0.028 % -> +0.11 % -> +0.0008 % -> -0.005 %, crossing
-    // zero), so its observed ratios (0.064, 0.007) are not a rate; the same 0.8 is asserted.
+    // 0.60 and 0.62 (2026-12-06); the bound 0.8 (order 0.32), 1.3x above them, says the error
+    // falls by more than the plateau's noise, not at a rate.
     EXPECT_LT(uf, 0.8 * uc) << closure;
-    EXPECT_LT(pf, 0.8 * pc) << closure;
-    // At 400 cells: #16's 0.3 % at 200 cells carried to 400 at first order, 0.15 %. Observed
-    // u 0.076 %, 0.060 % (2.0x, 2.5x below); p 0.011 %, 0.0008 % (14x, 190x below: the
-    // plateau mean's noise above; the 800-cell values, 0.011 % and 0.005 %, show its level, and
-    // a bound near them would pin this code's noise, not its accuracy).
+    // The shocked-air pressure error drops to the plateau mean's noise by 400 cells (equal
+    // strain -0.81 % at 100 -> -0.17 % -> +0.011 % -> +0.011 % at 800; relaxation +0.028 % ->
+    // +0.11 % -> +0.0008 % -> -0.005 %, crossing zero): its ratio is not a rate and is not
+    // asserted (issue #55; it was, at 0.8). At 400 cells both are bounded by #16's 0.3 % at 200
+    // cells carried to 400 at first order, 0.15 %. Observed u 0.078 %, 0.062 % (1.9x, 2.4x
+    // below); p 0.0075 %, 0.0061 % (the plateau mean's noise: a bound near them would pin this
+    // code's noise, not its accuracy).
     EXPECT_LT(uf, 0.0015) << closure;
     EXPECT_LT(pf, 0.0015) << closure;
   }
@@ -832,23 +832,20 @@ const ProductsAir& products_air(bool ke_fix, int cells = 400) {
   return it->second;
 }
 
-TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
-  const ProductsAir& es = products_air(true);
-  const ProductsAir& nk = products_air(false);
-  const ProductsAir& fine = products_air(true, 800);
-  for (const ProductsAir* w : {&es, &nk, &fine}) {
-    const char* name = w == &es ? "KE fix on" : w == &nk ? "KE fix off" : "KE fix on, 800 cells";
-    EXPECT_TRUE(w->finite) << name;
-    EXPECT_GT(w->rho_min, 0) << name;
-    EXPECT_GT(w->e_min, 0) << name;
-    EXPECT_GT(w->p_min, 0) << name;
-    // Masses to round-off: a rounding per cell in each of 3 remap sweeps, 3 x 535 x 2.2e-16 =
-    // 3.5e-13 at 400 cells (6.5e-13 for the 981 cycles at 800) if all of one sign; observed
-    // 4.9e-15 to 8.5e-15 at 400 cells, 1.1e-14 and 1.7e-14 at 800 (mixed signs cancel, the
-    // sum grows as the square root of the roundings). The air's bound was 1e-12 (170x).
-    EXPECT_LT(std::abs(w->dm_products), test::roundoff(1e-13)) << name;
-    EXPECT_LT(std::abs(w->dm_air), test::roundoff(1e-13)) << name;
-  }
+// What every products-air run must show, whatever its accuracy: finite, positive density,
+// energy and pressure in the products' cells, each material's mass to round-off. Masses: a
+// rounding per cell in each of 3 remap sweeps, 3 x 535 x 2.2e-16 = 3.5e-13 at 400 cells (6.5e-13
+// for the 970 cycles at 800) if all of one sign; observed (2026-12-06) 2.8e-15 to 8.3e-15 at 400
+// cells, 1.1e-14 and 1.3e-14 at 800, 2.0e-14 and 1.6e-14 at 1600 (mixed signs cancel, the sum
+// grows as the square root of the roundings); bound 1e-13. Checked by the tests that use each
+// run (until 2026-12-06 a test of its own, ProductsIntoAirAtTheExtremes).
+void expect_products_air_sane(const ProductsAir& w, const std::string& name) {
+  EXPECT_TRUE(w.finite) << name;
+  EXPECT_GT(w.rho_min, 0) << name;
+  EXPECT_GT(w.e_min, 0) << name;
+  EXPECT_GT(w.p_min, 0) << name;
+  EXPECT_LT(std::abs(w.dm_products), test::roundoff(1e-13)) << name;
+  EXPECT_LT(std::abs(w.dm_air), test::roundoff(1e-13)) << name;
 }
 
 // The products-air star state against the exact solution at 400 and 800 cells (KE fix on, the
@@ -858,10 +855,12 @@ TEST(MultiMaterial, ProductsIntoAirAtTheExtremes) {
 // +0.6, +0.1 %; p +2.6, +3.0, -0.7, -0.4 %; products density -34.1, -29.5, -16.2, -7.4 %;
 // interface +0.34, +0.245, +0.129, +0.062 cm. With the KE fix's shares by mass (2026-12-03) at
 // 400 / 800 cells: u +2.4 / +0.7 %, p +3.7 / -0.6 %, density -31.0 / -17.3 %, interface +0.262 /
-// +0.138 cm (ratios 0.27, 0.16, 0.56, 0.53).
+// +0.138 cm (ratios 0.27, 0.16, 0.56, 0.53; the same on 2026-12-06).
 TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
   const ProductsAir& c = products_air(true, 400);
   const ProductsAir& f = products_air(true, 800);
+  expect_products_air_sane(c, "KE fix on, 400 cells");
+  expect_products_air_sane(f, "KE fix on, 800 cells");
   const double uc = rel(c.u_mean, c.u_star), uf = rel(f.u_mean, f.u_star);
   const double pc = rel(c.p_air, c.p_star), pf = rel(f.p_air, f.p_star);
   const double rc = rel(c.rho_products, c.rho_star), rf = rel(f.rho_products, f.rho_star);
@@ -872,12 +871,11 @@ TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
       "interface offset %.3f -> %.3f cm (ratio %.2f)\n",
       100 * uc, 100 * uf, uf / uc, 100 * pc, 100 * pf, pf / pc, 100 * rc, 100 * rf, rf / rc, ic,
       iff, iff / ic);
-  // Star velocity and pressure: first order would halve them; the bound 0.7 (order 1/2)
-  // allows the slower start of the 200 -> 400 step (u ratio 0.47, p none: +2.6 -> +3.0 %).
-  // Observed 0.27 (u) and 0.23 (p, whose error changes sign on the way and then keeps
-  // falling: -0.4 % at 1600 cells).
+  // Star velocity: first order would halve it; the bound 0.7 (order 1/2) allows the slower
+  // start of the 200 -> 400 step (ratio 0.47). Observed 0.27. The pressure's error changes sign
+  // from 400 to 800 (+3.7 -> -0.6 %, then -0.5 % at 1600): its ratio (0.16) is not a rate and
+  // is not asserted (issue #55; it was, at 0.7); its size at 800 cells is, below.
   EXPECT_LT(uf, 0.7 * uc);
-  EXPECT_LT(pf, 0.7 * pc);
   // At 800 cells: the 400-cell margins of this test before it ran two resolutions (5 % for p,
   // 4 % for u) carried to 800 at first order, 2.5 % and 2 %. Observed 0.71 % and 0.57 %
   // (3.5x below each).
@@ -900,9 +898,12 @@ TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
 // as above). Measured 2026-12-03 (double, 1 thread): density -17.3 % at 800 and -7.9 % at 1600
 // cells (ratio 0.46, order 1.1), interface +0.138 and +0.067 cm (0.49), star p -0.5 %, u +0.1 %
 // at 1600, 1,860 cycles (docs/numerics.md, "Products into air").
-TEST(MultiMaterial, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
+// Labelled long (the 1600-cell run is the suite's second-longest; ci/test.sh runs it in the
+// double build; suite MultiMaterialLong, tests/CMakeLists.txt).
+TEST(MultiMaterialLong, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
   const ProductsAir& f = products_air(true, 800);
   const ProductsAir& ff = products_air(true, 1600);
+  expect_products_air_sane(ff, "KE fix on, 1600 cells");
   const double rf = rel(f.rho_products, f.rho_star), rff = rel(ff.rho_products, ff.rho_star);
   const double iff = std::abs(f.interface - f.contact), ifff = std::abs(ff.interface - ff.contact);
   std::printf(
@@ -915,10 +916,6 @@ TEST(MultiMaterial, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
   // the star state stays within the 800-cell bounds of the test above
   EXPECT_LT(rel(ff.p_air, ff.p_star), 0.025);
   EXPECT_LT(rel(ff.u_mean, ff.u_star), 0.02);
-  EXPECT_TRUE(ff.finite);
-  EXPECT_GT(ff.rho_min, 0);
-  EXPECT_GT(ff.e_min, 0);
-  EXPECT_GT(ff.p_min, 0);
 }
 
 // A regression pin of a known defect, not a verification (issue #16 open; docs/numerics.md,
@@ -935,6 +932,10 @@ TEST(MultiMaterial, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
 TEST(MultiMaterialRegressionPin, ProductsIntoAirOverExpansion) {
   const ProductsAir& es = products_air(true);
   const ProductsAir& nk = products_air(false);
+  expect_products_air_sane(es, "KE fix on, 400 cells");
+  expect_products_air_sane(nk, "KE fix off, 400 cells");
+  // observed (2026-12-06) interface +7.5 / +1.7 cells (bounds 9, 3), density -31.0 / -11.5 %
+  // (bounds 35 %, 15 %), KE fix off p -5.1 % (7 %), u +0.7 % (2 %); exact solution: 0 each
   EXPECT_LT(std::abs(es.interface - es.contact), 9 * es.dx);
   EXPECT_LT(std::abs(nk.interface - nk.contact), 3 * nk.dx);
   EXPECT_LT(std::abs(es.rho_products / es.rho_star - 1), 0.35);

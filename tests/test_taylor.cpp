@@ -1,8 +1,8 @@
 // Taylor anvil (issue #12): the OFHC copper cylinder of Johnson & Cook (1983) at 190 m/s onto a
 // rigid wall (configs/taylor_anvil.yaml), recovered length and footprint diameter against the
-// experiment (tests/exact/taylor_data.hpp), with both flow-stress models of the library
-// (Johnson-Cook, Steinberg-Guinan, Zerilli-Armstrong) at R/8 cells, and Zerilli-Armstrong also
-// at R/6, whose footprint error must fall from R/6 to R/8.
+// experiment (tests/exact/taylor_data.hpp). Verification: Zerilli-Armstrong, within the issue's
+// 5 % at R/6 and R/8 cells with the footprint error falling. Pins (TaylorPin, label pin):
+// Johnson-Cook and Steinberg-Guinan, which miss the 5 %, held near their present errors at R/6.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -20,10 +20,8 @@ namespace tx = mp::exact::taylor;
 namespace {
 
 constexpr double kRadius = 0.5 * tx::kDiameter0;  // cm
-// Cells across the radius of the two runs (the bounds at kFine): R/8 runs 1450-1670 cycles of
-// 18x18x56 cells, 25 s at 1 Mcell-cycle/s, 4 min on this loaded 2-core machine. An R/6 run
-// costs a third of that; the suite runs it for Zerilli-Armstrong only (until 2026-12-03 for all
-// three, printed, not asserted: JC and SG at R/6 are in docs/numerics.md "Taylor anvil").
+// Cells across the radius of the two resolutions: R/8 runs 1670 cycles of 18x18x56 cells (21 s
+// on 2 ranks); an R/6 run (1263 cycles of 14x14x42) costs under half of that.
 constexpr int kCoarse = 6, kFine = 8;
 
 struct TaylorRun {
@@ -87,71 +85,78 @@ void print(const char* model, int n, const TaylorRun& r) {
       s.footprint_area, 100 * err(s.footprint_area, tx::kFootprintDiameter), r.ke_left, r.cu_lost);
 }
 
-// One model at R/8, the bounds there; with `coarse`, R/6 first, and the footprint error must
-// fall from R/6 to R/8 (returned through *footprint_errors, R/6 then R/8).
-void check_model(const char* model, double length_bound, double footprint_bound,
-                 bool coarse = false, double* footprint_errors = nullptr) {
+// One model at R/n: the run printed and checked for what every model must do (the rod stopped,
+// the copper's mass kept); returns the length and footprint errors against the experiment.
+struct TaylorErrors {
+  double length = NAN, footprint = NAN;
+};
+
+TaylorErrors check_model(const char* model, int n) {
   if (rank0())
     std::printf(
         "taylor experiment (Johnson & Cook 1983): L0 %.3f cm, D0 %.3f cm, %.0f m/s -> "
         "L %.4f cm, footprint D %.4f cm\n",
         tx::kLength0, tx::kDiameter0, tx::kSpeed * 1e4, tx::kLengthFinal, tx::kFootprintDiameter);
-  TaylorRun low;
-  if (coarse) {
-    low = run_taylor(model, kCoarse);
-    ASSERT_TRUE(low.ok);
-    print(model, kCoarse, low);
-  }
-  const TaylorRun fine = run_taylor(model, kFine);
-  ASSERT_TRUE(fine.ok);
-  print(model, kFine, fine);
-  // The rod has stopped: at most 1e-3 of the impact's kinetic energy is left (2.5e-4 to 4.2e-4
-  // seen with Johnson-Cook and Steinberg-Guinan, 8e-5 with Zerilli-Armstrong: the elastic
-  // ringing of the recovered rod).
-  EXPECT_LT(fine.ke_left, 1e-3) << model;
+  const TaylorRun run = run_taylor(model, n);
+  if (!run.ok) return {};
+  print(model, n, run);
+  // The rod has stopped: at most 1e-3 of the impact's kinetic energy is left (observed
+  // 2026-12-06: Johnson-Cook 2.08e-4 at R/6, Steinberg-Guinan 4.14e-4 at R/6, Zerilli-Armstrong
+  // 9.9e-5 at R/6 and R/8, the elastic ringing of the recovered rod).
+  EXPECT_LT(run.ke_left, 1e-3) << model << " R/" << n;
   // No copper left the mesh (the box is sized so the rod stays inside) and, at the default
-  // min_fraction, none is handed to the air: the copper's mass is kept to round-off (8.8e-15
-  // and 8.9e-15 at R/8; bound 1e-12, a few thousand cycles of the flux sums' roundings). With
-  // the deck's former min_fraction 1e-4, 7.3e-4 to 8.9e-4 went to the air.
-  EXPECT_LT(std::abs(fine.cu_lost), test::roundoff(1e-12)) << model;
-  // The issue asks for 5 % of the measured length and footprint (the measurement's own
-  // rounding is 0.1-0.3 %, tests/exact/taylor_data.hpp). Met with Zerilli-Armstrong (R/8 L
-  // +2.93 %, D -1.88 %); not with the other two (2026-12-01, R/8): Johnson-Cook L +6.07 %,
-  // D +5.45 %; Steinberg-Guinan L +4.60 %, D -5.53 %. The bounds asserted (the callers') are
-  // the present errors plus ~1.5 points (~2 for the Zerilli-Armstrong footprint, whose R/6 -> R/8
-  // change is 2.3 points), so a regression shows; the 5 % target is printed beside them. What
-  // limits the other two is in docs/numerics.md, "Taylor anvil".
-  const double el = err(fine.shape.length, tx::kLengthFinal);
-  const double ed = err(fine.shape.footprint, tx::kFootprintDiameter);
+  // min_fraction, none is handed to the air: the copper's mass is kept to round-off (observed
+  // at most 1.1e-14 in double; bound 1e-12, a few thousand cycles of the flux sums' roundings).
+  // With the deck's former min_fraction 1e-4, 7.3e-4 to 8.9e-4 went to the air.
+  EXPECT_LT(std::abs(run.cu_lost), test::roundoff(1e-12)) << model << " R/" << n;
+  const TaylorErrors e{err(run.shape.length, tx::kLengthFinal),
+                       err(run.shape.footprint, tx::kFootprintDiameter)};
   if (rank0())
     std::printf("taylor %s R/%d: issue's 5 %% target %s (length %+.2f %%, footprint %+.2f %%)\n",
-                model, kFine, std::abs(el) < 0.05 && std::abs(ed) < 0.05 ? "met" : "NOT met",
-                100 * el, 100 * ed);
-  EXPECT_LT(std::abs(el), length_bound) << model;
-  EXPECT_LT(std::abs(ed), footprint_bound) << model;
-  if (coarse && footprint_errors) {
-    footprint_errors[0] = err(low.shape.footprint, tx::kFootprintDiameter);
-    footprint_errors[1] = ed;
-  }
+                model, n,
+                std::abs(e.length) < 0.05 && std::abs(e.footprint) < 0.05 ? "met" : "NOT met",
+                100 * e.length, 100 * e.footprint);
+  return e;
 }
 
 }  // namespace
 
-TEST(Taylor, JohnsonCookCopperMatchesTheExperiment) {
-  check_model("johnson_cook", 0.075, 0.07);
+// Zerilli & Armstrong's (1987) copper, the model its authors checked against these cylinders:
+// the issue's target, length and footprint within 5 % of the experiment (the measurement's own
+// rounding is 0.1-0.3 %, tests/exact/taylor_data.hpp), at R/6 and R/8, and the footprint error
+// falling. Observed 2026-12-06 (2 ranks, double and float alike): R/6 L +2.97 %, D -4.91 %; R/8
+// L +3.08 %, D -2.25 %. Bounds: 5 % each (the target; R/6's footprint passes at 0.98 of it), and
+// the R/8 footprint error below 0.8 of the R/6 one (observed 0.46). The length's error does not
+// fall from R/6 to R/8 (+2.97 -> +3.08 %, within its 0.3-point measuring rounding; from R/6 to
+// R/12 it settles near +3.5 %, docs/numerics.md "Taylor anvil"), so only its 5 % is asserted.
+TEST(Taylor, ZerilliArmstrongCopperWithinFivePercentAtTwoResolutions) {
+  const TaylorErrors c = check_model("zerilli_armstrong", kCoarse);
+  const TaylorErrors f = check_model("zerilli_armstrong", kFine);
+  for (const TaylorErrors* e : {&c, &f}) {
+    const int n = e == &c ? kCoarse : kFine;
+    EXPECT_LT(std::abs(e->length), 0.05) << "R/" << n;
+    EXPECT_LT(std::abs(e->footprint), 0.05) << "R/" << n;
+  }
+  EXPECT_LT(std::abs(f.footprint), 0.8 * std::abs(c.footprint));
 }
 
-TEST(Taylor, SteinbergGuinanCopperMatchesTheExperiment) {
-  check_model("steinberg_guinan", 0.065, 0.07);
+// Pins, not verification: Johnson-Cook and Steinberg-Guinan miss the issue's 5 % target (what
+// limits them: docs/numerics.md, "Taylor anvil"). Run at R/6 since 2026-12-06 (under half of
+// R/8's cost; at R/8 they were asserted as "MatchesTheExperiment" at 6.5-7.5 %); the bounds hold
+// the present errors plus about 1.5 points so that a change shows. Observed (2026-12-06, double,
+// 2 ranks) at R/6 and, for comparison, R/8: Johnson-Cook L +6.38 % / +6.23 %, D +3.11 % /
+// +5.04 % (the footprint's error grows with the zone); Steinberg-Guinan L +5.16 % / +4.96 %,
+// D -7.00 % / -6.56 %.
+TEST(TaylorPin, JohnsonCookCopperMissesTheFivePercentTarget) {
+  const TaylorErrors e = check_model("johnson_cook", kCoarse);
+  // observed L +6.38 % (bound 8 %), D +3.11 % (bound 4.5 %); the issue's target 5 % each
+  EXPECT_LT(std::abs(e.length), 0.08) << "pin; the issue's target is 5 %";
+  EXPECT_LT(std::abs(e.footprint), 0.045) << "pin; the issue's target is 5 %";
 }
 
-// Zerilli & Armstrong's (1987) copper, the model its authors checked against these cylinders.
-// Measured 2026-12-02 (1 thread, double and float alike): R/6 L +2.60 %, D -4.14 %; R/8 L
-// +2.93 %, D -1.88 %. Bounds: the R/8 errors plus ~1.5 / ~2 points, inside the issue's 5 %.
-// The footprint's error falls with the zone (the length's, within its 0.3-point measuring
-// rounding, does not: +2.60 -> +2.93 %): asserted at 0.8 of the R/6 error (0.45 observed).
-TEST(Taylor, ZerilliArmstrongCopperMatchesTheExperiment) {
-  double ed[2] = {NAN, NAN};
-  check_model("zerilli_armstrong", 0.045, 0.04, true, ed);
-  EXPECT_LT(std::abs(ed[1]), 0.8 * std::abs(ed[0]));
+TEST(TaylorPin, SteinbergGuinanCopperMissesTheFivePercentTarget) {
+  const TaylorErrors e = check_model("steinberg_guinan", kCoarse);
+  // observed L +5.16 % (bound 6.5 %), D -7.00 % (bound 8.5 %); the issue's target 5 % each
+  EXPECT_LT(std::abs(e.length), 0.065) << "pin; the issue's target is 5 %";
+  EXPECT_LT(std::abs(e.footprint), 0.085) << "pin; the issue's target is 5 %";
 }
