@@ -13,6 +13,7 @@
 #include "config/deck.hpp"
 #include "config/scene.hpp"
 #include "core/error.hpp"
+#include "paths.hpp"
 
 namespace {
 
@@ -463,8 +464,7 @@ TEST(Deck, WaveShapeAndDiagonal) {
 }
 
 TEST(Deck, ShippedDecksParse) {
-  const char* env = std::getenv("MINIPAGOSA_SOURCE_DIR");
-  const std::string dir = std::string(env ? env : "..") + "/configs";
+  const std::string dir = mp::test::source_dir() + "/configs";
   DIR* d = opendir(dir.c_str());
   ASSERT_NE(d, nullptr) << "cannot open " << dir;
   std::vector<std::string> files;
@@ -475,7 +475,8 @@ TEST(Deck, ShippedDecksParse) {
   }
   closedir(d);
   std::sort(files.begin(), files.end());
-  // every shipped deck, by name: a deck deleted or renamed fails here (the README's scenes table lists them)
+  // every shipped deck, by name: a deck deleted or renamed fails here (the README's scenes table
+  // lists them)
   const std::vector<std::string> expected = {
       "charge_3d",    "copper_wall", "elastic_wave", "leblanc",
       "mader",        "noh",         "noh_planar",   "perforator",

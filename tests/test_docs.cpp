@@ -16,12 +16,13 @@
 
 #include "config/catalogue.hpp"
 #include "config/deck.hpp"
+#include "paths.hpp"
 
 namespace {
 
+// the source tree (tests/paths.hpp: MINIPAGOSA_SOURCE_DIR, else the configured one)
 std::string source_dir() {
-  const char* env = std::getenv("MINIPAGOSA_SOURCE_DIR");
-  return env ? env : "..";
+  return mp::test::source_dir();
 }
 
 std::string read_file(const std::string& path) {
