@@ -4,6 +4,7 @@
 #pragma once
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <stdlib.h>
 #include <sys/wait.h>
@@ -159,6 +160,22 @@ class Child {
   bool done_ = false;
   int status_ = 0;
 };
+
+// A file's dataset names, in the file's order (H5Literate by name); empty if it cannot be opened.
+inline std::vector<std::string> dataset_names(const std::string& file) {
+  std::vector<std::string> names;
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return names;
+  H5Literate(
+      f, H5_INDEX_NAME, H5_ITER_INC, nullptr,
+      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
+        static_cast<std::vector<std::string>*>(data)->push_back(name);
+        return 0;
+      },
+      &names);
+  H5Fclose(f);
+  return names;
+}
 
 // A fresh temporary directory per test, removed unless the test failed.
 class CliTest : public ::testing::Test {

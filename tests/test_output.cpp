@@ -34,22 +34,6 @@ std::vector<std::string> args(const std::string& deck, std::vector<std::string> 
   return a;
 }
 
-// The run's dataset names, in the file's order (H5Literate by name).
-std::vector<std::string> dataset_names(const std::string& file) {
-  std::vector<std::string> names;
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) return names;
-  H5Literate(
-      f, H5_INDEX_NAME, H5_ITER_INC, nullptr,
-      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-        static_cast<std::vector<std::string>*>(data)->push_back(name);
-        return 0;
-      },
-      &names);
-  H5Fclose(f);
-  return names;
-}
-
 long count_different(const std::vector<double>& a, const std::vector<double>& b) {
   if (a.size() != b.size()) return -1;
   long n = 0;
@@ -312,10 +296,10 @@ TEST_F(Output, SigtermStopsAfterTheCycleAndTheRestartFinishesBitwiseEqual) {
 // Until 2026-12-01 the signal went to mpiexec alone. Open MPI 4.1's mpiexec does not forward
 // SIGTERM: it aborts the job, sending the ranks SIGTERM and then killing them, and whether they
 // had written their checkpoint and summary by then was a race (on the quiet 2-core machine
-// they had not, 7 times in 8; a CI run kept the files but lost the closing line). docs/running.md says
-// to signal the ranks.
-// The run is long (t = 8, 488 cycles) so that it is still running when the signal comes.
-// The ranks: the processes whose parent is mpiexec (Open MPI launches them itself on one node).
+// they had not, 7 times in 8; a CI run kept the files but lost the closing line). docs/running.md
+// says to signal the ranks. The run is long (t = 8, 488 cycles) so that it is still running when
+// the signal comes. The ranks: the processes whose parent is mpiexec (Open MPI launches them itself
+// on one node).
 std::vector<pid_t> children_of(pid_t parent) {
   std::vector<pid_t> out;
   for (const auto& e : fs::directory_iterator("/proc")) {

@@ -23,21 +23,6 @@ using namespace mp::cli;
 // checkpoint, to its deck's end time (2 us, 137 cycles).
 const std::vector<std::string> kDeck = {"--set", "mesh.cells=[48,24,24]"};
 
-std::vector<std::string> names_in(const std::string& file) {
-  std::vector<std::string> names;
-  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) return names;
-  H5Literate(
-      f, H5_INDEX_NAME, H5_ITER_INC, nullptr,
-      [](hid_t, const char* name, const H5L_info_t*, void* data) -> herr_t {
-        static_cast<std::vector<std::string>*>(data)->push_back(name);
-        return 0;
-      },
-      &names);
-  H5Fclose(f);
-  return names;
-}
-
 class Soak : public CliTest {
  protected:
   // One invocation: `ranks` ranks under mpiexec, output to `out`, continuing from the newest
@@ -83,8 +68,8 @@ class Soak : public CliTest {
     char dump[64];
     std::snprintf(dump, sizeof dump, "charge_3d_%06ld.h5", sa["cycles"].get<long>());
     const std::string fa = (dir_ / a / dump).string(), fb = (dir_ / b / dump).string();
-    const auto names = names_in(fa);
-    EXPECT_EQ(names, names_in(fb));
+    const auto names = dataset_names(fa);
+    EXPECT_EQ(names, dataset_names(fb));
     EXPECT_GE(names.size(), 20u) << "the dump lost its fields";
     long total = 0;
     for (const auto& n : names) {
