@@ -43,7 +43,7 @@ void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const
 #pragma GCC ivdep
         for (int k = k0; k < k1; ++k) {
           const Real f = vfa(i, j, k);
-          auto at = [&](const auto& a, int o) { return a(i + o * sx, j + o * sy, k + o * sz); };
+          auto at = [&](const auto& a, int s) { return a(i + s * sx, j + s * sy, k + s * sz); };
           Real m, en;
           column_face_flux(f, at, ra, ea, pa, o, m, en);
           mfa(i, j, k) = m;
