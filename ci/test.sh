@@ -15,8 +15,8 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 t0=$(date +%s)
 cd "${build}"
 # Tests declare how many ranks they use (PROCESSORS); ctest packs them onto the cores. The fast
-# path: every kind but perf (timing verdicts run in ci/perf-check.sh) and long (below; README,
-# "Test kinds").
+# path: every kind but perf (timing verdicts run in ci/perf-check.sh) and long (ci/long.sh,
+# which .ci/run runs after this; README, "Test kinds").
 ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE 'perf|long'
 phase "double suite" "${t0}"
 # The same fast path in a single-precision build (tolerances per precision: tests/precision.hpp),
@@ -30,13 +30,5 @@ if [ "${MINIPAGOSA_SKIP_FLOAT:-0}" != 1 ]; then
   cd "${build}-float"
   ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE 'perf|long'
   phase "float suite" "${t0}"
-fi
-# The checks kept out of the fast path (label long), in the double build only.
-# MINIPAGOSA_SKIP_LONG=1 skips them.
-if [ "${MINIPAGOSA_SKIP_LONG:-0}" != 1 ]; then
-  t0=$(date +%s)
-  cd "${build}"
-  ctest --output-on-failure -j "$(nproc)" --timeout 900 -L long
-  phase "long checks (double)" "${t0}"
 fi
 echo "[test] suite finished in $(( $(date +%s) - start )) s (setup + build + tests; $(IFS=,; echo "${times[*]}" | sed 's/,/, /g'))"

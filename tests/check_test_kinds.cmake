@@ -2,7 +2,18 @@
 # kind label (verification, consistency, pin, unit, perf). Reads `ctest -N --show-only=json-v1`.
 #   cmake -DCTEST=ctest -DBUILD=build -DKINDS="verification;consistency;pin;unit;perf" -P check_test_kinds.cmake
 cmake_minimum_required(VERSION 3.19)  # string(JSON), IN_LIST
-execute_process(COMMAND ${CTEST} -N --show-only=json-v1 WORKING_DIRECTORY ${BUILD}
+# ctest -N replaces Testing/Temporary/LastTest.log of the directory it lists, which would take
+# the log of the suite this test runs in: it lists a copy of the build's CTestTestfile.cmake tree.
+set(scratch ${BUILD}/Testing/test_kinds)
+file(REMOVE_RECURSE ${scratch})
+file(GLOB_RECURSE testfiles RELATIVE ${BUILD} ${BUILD}/CTestTestfile.cmake ${BUILD}/*/CTestTestfile.cmake)
+foreach(f ${testfiles})
+  if(NOT f MATCHES "^Testing/")
+    get_filename_component(dir ${scratch}/${f} DIRECTORY)
+    file(COPY ${BUILD}/${f} DESTINATION ${dir})
+  endif()
+endforeach()
+execute_process(COMMAND ${CTEST} -N --show-only=json-v1 WORKING_DIRECTORY ${scratch}
                 OUTPUT_VARIABLE json RESULT_VARIABLE rc)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "ctest -N --show-only=json-v1 failed (${rc})")

@@ -898,7 +898,7 @@ TEST(MultiMaterial, ProductsIntoAirStarStateConverges) {
 // as above). Measured 2026-12-03 (double, 1 thread): density -17.3 % at 800 and -7.9 % at 1600
 // cells (ratio 0.46, order 1.1), interface +0.138 and +0.067 cm (0.49), star p -0.5 %, u +0.1 %
 // at 1600, 1,860 cycles (docs/numerics.md, "Products into air").
-// Labelled long (the 1600-cell run is the suite's second-longest; ci/test.sh runs it in the
+// Labelled long (the 1600-cell run is the suite's second-longest; ci/long.sh runs it in the
 // double build; suite MultiMaterialLong, tests/CMakeLists.txt).
 TEST(MultiMaterialLong, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
   const ProductsAir& f = products_air(true, 800);

@@ -1,6 +1,6 @@
 // 3-D verification: Noh's spherical implosion (plateau, checkerboard, shock radius, wall
 // heating). Noh.* (the fast path): the errors falling from 32^3 to 48^3. NohLong.* (CTest entry
-// test_noh_long_np1, label long; ci/test.sh runs it in the double build): issue #16's targets at
+// test_noh_long_np1, label long; ci/long.sh runs it in the double build): issue #16's targets at
 // its resolutions, 64^3 and 96^3 (96^3 alone is 5x the cost of 64^3: 274 cycles of 885k cells).
 // Its own executable (split from test_blast.cpp, 2026-12-05), so that CTest runs it beside the
 // Sedov tests.
@@ -140,7 +140,7 @@ TEST(Noh, PlateauConvergesFrom32To48Cubed) {
 // R / h alone). Until 2026-12-05 the test ran 48^3 and 64^3 with bounds 10.5 / 8.4 % (plateau),
 // 3.75 / 3.52 % (checkerboard) and 3 % (radius); then 64^3 and 96^3 with the checkerboard
 // within 3.8 / 3.1 %.
-// Labelled long (issue #55): ci/test.sh runs it in the double build, the float build's suite
+// Labelled long (issue #55): ci/long.sh runs it in the double build, the float build's suite
 // leaves it out (before, the float build ran 64^3 alone). Bounds: the targets, side by side
 // with the observations above (plateau 4.76 / 3.82 % against 5 %: 1.05x and 1.3x; checkerboard
 // 2.70 / 2.18 % against 3 %: 1.11x and 1.38x; radius +0.75 / +0.81 % against 2 %).

@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# The checks kept out of README command 2's fast path (CTest label long: Noh at 64^3 and 96^3,
+# the third-order remap's convergence and comparisons, products into air at 1600 cells), in the
+# double build that ci/test.sh left in ./build (or $MINIPAGOSA_BUILD_DIR). .ci/run runs it after
+# ci/test.sh; it builds nothing.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$(realpath -m "${MINIPAGOSA_BUILD_DIR:-${here}/build}")"
+if [ ! -f "${build}/CTestTestfile.cmake" ]; then
+  echo "ci/long.sh: no test build in ${build}; run bash ci/test.sh first" >&2
+  exit 1
+fi
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+start=$(date +%s)
+cd "${build}"
+ctest --output-on-failure -j "$(nproc)" --timeout 900 -L long
+echo "[long] long checks finished in $(( $(date +%s) - start )) s"
