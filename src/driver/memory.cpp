@@ -31,14 +31,11 @@ constexpr int kHaloFields = 6;
 // The probe's cells per axis for a mesh of `n`: every longer axis scaled by one factor, so the
 // probe keeps the box's shape, to about `target` cells in all.
 std::array<int, 3> probe_cells(const std::array<int, 3>& n, long target) {
-  double total = 1, kept = 1;
+  double total = 1;
   int scaled = 0;
   for (int d = 0; d < 3; ++d) {
     total *= n[d];
-    if (n[d] <= kKeptAxis)
-      kept *= n[d];
-    else
-      ++scaled;
+    if (n[d] > kKeptAxis) ++scaled;
   }
   if (total <= double(target) || scaled == 0) return n;
   const double f = std::pow(double(target) / total, 1.0 / scaled);
@@ -60,6 +57,10 @@ double resident_bytes() {
   for (std::string line; std::getline(in, line);)
     if (line.rfind("VmRSS:", 0) == 0) return std::stod(line.substr(6)) * 1024.0;
   return 0;
+}
+
+bool checkpoints_on(const Scene& s) {
+  return s.output.checkpoint_cycles > 0 || s.output.checkpoint_seconds > 0;
 }
 
 bool programmed_burn(const Scene& s) {
@@ -104,10 +105,9 @@ void probe_run(const Scene& scene, const std::array<int, 3>& cells, const Mesh& 
   quiet.quiet = true;
   Simulation sim(ps, MPI_COMM_SELF, quiet);
   // the arrays a dump or a checkpoint computes live beside the run's for its writing
-  const bool checkpoints = ps.output.checkpoint_cycles > 0 || ps.output.checkpoint_seconds > 0;
   auto output = [&] {
     if (ps.output.write) sim.dump_fields();
-    if (checkpoints) sim.checkpoint_fields();
+    if (checkpoints_on(ps)) sim.checkpoint_fields();
   };
   sim.initialize();
   after_setup = tracker.live_parts();
@@ -145,14 +145,17 @@ std::string MemoryEstimate::text() const {
 MemoryEstimate estimate_memory(const Scene& scene, const Mesh& block) {
   std::vector<double> at_peak, after_setup;
   // A coarse probe may fail where the deck does not (a detonator lighting no cell that is at
-  // least half explosive): the next probe has 8 times the cells, the last the deck's mesh.
+  // least half explosive): the next probe has 8 times the cells, up to the deck's mesh or the
+  // rank's block, whichever is smaller (a probe never takes more than the run would); the
+  // last one's error is the deck's.
+  const long most = std::max(kProbeCells, long(block.owned_cell_count()));
   for (long target = kProbeCells;; target *= 8) {
-    const std::array<int, 3> cells = probe_cells(scene.mesh.cells, target);
+    const std::array<int, 3> cells = probe_cells(scene.mesh.cells, std::min(target, most));
     try {
       probe_run(scene, cells, block, at_peak, after_setup);
       break;
     } catch (const InputError&) {
-      if (cells == scene.mesh.cells) throw;
+      if (cells == scene.mesh.cells || target >= most) throw;
     }
   }
   MemoryEstimate e;
@@ -184,8 +187,7 @@ MemoryEstimate estimate_memory(const Scene& scene, const Mesh& block) {
   }
   // writing: the HDF5 library (MPI-IO, its caches) and the host copy of one field's owned block
   // that the writer stages (src/io/h5_util.cpp)
-  if (scene.output.write || scene.output.checkpoint_cycles > 0 ||
-      scene.output.checkpoint_seconds > 0) {
+  if (scene.output.write || checkpoints_on(scene)) {
     double owned_nodes = 1;
     for (int d = 0; d < 3; ++d) owned_nodes *= block.owned_cells(d) + 1;
     e.output = kHdf5Bytes + owned_nodes * sizeof(Real);

@@ -177,7 +177,9 @@ int run(const CommandLine& cl) {
                          mib(node_avail) + " available; use a coarser mesh.cells or more nodes");
     }
     if (cl.check_only) {
-      log_line("deck, decomposition and memory are valid; nothing allocated or run (--check)");
+      log_line(
+          "deck, decomposition and memory are valid; the run's arrays not allocated, nothing run "
+          "(--check)");
       return 0;
     }
 
