@@ -3,7 +3,7 @@
 // arrays, mixed cells in a CSR list), sweeping the number of materials and the fraction of
 // mixed cells. Reports time per cycle (and per phase), a per-kernel breakdown, bytes per cell
 // from the allocations themselves (live Kokkos View allocations after set-up and warm-up, seen
-// through the Kokkos Tools callbacks, perf/memory.hpp: the material state, labels "dense::",
+// through the Kokkos Tools callbacks, src/core/memory.hpp: the material state, labels "dense::",
 // "compact::", and the whole run), and the dense/compact ratio, beside the STREAM triad
 // of the same process, as two markdown tables and JSON (perf/plot_layouts.py draws the PNG).
 //
@@ -42,7 +42,7 @@
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
-#include "memory.hpp"
+#include "core/memory.hpp"
 #include "protocol.hpp"
 #include "report.hpp"
 #include "runtime.hpp"
@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
           LayoutRun run[3];
           for (int l = 0; l < 3; ++l) {
             // the allocations this layout's run makes and keeps through set-up and warm-up
-            perf::AllocationTracker mem;
+            AllocationTracker mem;
             const Scene scene = read_scene(
                 Deck::parse(l < 2 ? stripes_deck(nmat, width, cells, layouts[l],
                                                  std::min(strength, nmat), velocity)

@@ -40,7 +40,7 @@
 #include "config/scene.hpp"
 #include "driver/simulation.hpp"
 #include "exact/norms.hpp"
-#include "memory.hpp"
+#include "core/memory.hpp"
 #include "runtime.hpp"
 #include "support.hpp"
 
@@ -104,7 +104,7 @@ Point run(const std::string& scene_name, int cells, const std::vector<std::strin
     start.initialize();
     f_start = test::gather(start.mesh(), start.hydro().materials()->fraction(1), Centering::Cell);
   }
-  const perf::AllocationTracker tracker;  // sees the run's allocations from construction on
+  const AllocationTracker tracker;  // sees the run's allocations from construction on
   Simulation sim(scene, MPI_COMM_WORLD, settings);
   sim.initialize();
   const RunResult r = sim.run();
@@ -294,7 +294,7 @@ int sweep_main(int argc, char** argv) {
   md << "# Speed/accuracy sweep (" << real << ", " << (quick ? "quick" : "full")
      << "; wall times of one run each on this machine)\n\n"
      << "peak MB: the high-water mark of the run's live Kokkos allocations (fields, scratch, "
-        "halo buffers; perf/memory.hpp), set-up included; bytes/cell: that over the cells.\n";
+        "halo buffers; src/core/memory.hpp), set-up included; bytes/cell: that over the cells.\n";
   std::string last;
   for (std::size_t a = 0; a < pts.size(); ++a) {
     const Point& p = pts[a];

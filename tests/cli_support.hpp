@@ -7,6 +7,7 @@
 #include <hdf5.h>
 #include <signal.h>
 #include <stdlib.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -54,6 +55,7 @@ struct Result {
   int status = -1;  // exit status; -1 if killed by a signal or timed out
   bool timed_out = false;
   std::string out, err;
+  long max_rss_kib = 0;  // the child's peak resident memory (wait4's ru_maxrss), KiB
 };
 
 // The clean environment of a child run.
@@ -114,7 +116,7 @@ class Child {
     while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < seconds) {
       if (holds(read(out_), text)) return true;
       int st = 0;
-      if (!done_ && waitpid(pid_, &st, WNOHANG) == pid_) {
+      if (!done_ && wait4(pid_, &st, WNOHANG, &usage_) == pid_) {
         done_ = true;
         status_ = st;
         return holds(read(out_), text);
@@ -130,7 +132,7 @@ class Child {
     const auto t0 = std::chrono::steady_clock::now();
     while (!done_) {
       int st = 0;
-      if (waitpid(pid_, &st, WNOHANG) == pid_) {
+      if (wait4(pid_, &st, WNOHANG, &usage_) == pid_) {
         done_ = true;
         status_ = st;
         break;
@@ -148,6 +150,7 @@ class Child {
     if (!r.timed_out && WIFEXITED(status_)) r.status = WEXITSTATUS(status_);
     r.out = read(out_);
     r.err = read(err_);
+    r.max_rss_kib = usage_.ru_maxrss;
     std::error_code ec;
     fs::remove(out_, ec);
     fs::remove(err_, ec);
@@ -159,6 +162,7 @@ class Child {
   pid_t pid_ = -1;
   bool done_ = false;
   int status_ = 0;
+  struct rusage usage_ {};
 };
 
 // A file's dataset names, in the file's order (H5Literate by name); empty if it cannot be opened.

@@ -15,7 +15,7 @@
 #include <map>
 #include <string>
 
-#include "../perf/memory.hpp"
+#include "core/memory.hpp"
 #include "exact/kenamond.hpp"
 #include "support.hpp"
 
@@ -348,7 +348,7 @@ TEST(MultiMaterialModules, CompactStressSetsOnlyWhereTheMaterialIs) {
   double cells = 0;
   for (int l = 0; l < 2; ++l) {
     const std::string layout = l == 0 ? "dense" : "compact";
-    perf::AllocationTracker tracker;
+    AllocationTracker tracker;
     auto r = test::run_scene(test::load_scene(
         "charge_3d.yaml",
         {"time.max_cycles=20", "time.end=1.0", "output.write=false", "numerics.layout=" + layout}));

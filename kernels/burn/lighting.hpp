@@ -62,6 +62,13 @@ struct LightingGrid {
   double largest_edge() const { return std::max({h[0], h[1], h[2]}); }
 };
 
+// Host bytes per global cell that the construction and its caller (Burn::light) hold at once,
+// on every rank: the mask gathered over the ranks (2 x 1 B), the times, parents and centre
+// pivots (3 x 8 B), the closed and seeded flags (2 x 1 B), the pivots (40 B each) and the open
+// queue (16 B an entry). Counted in the run's memory estimate (src/driver/memory.cpp); 50
+// covers the 28 B of fixed arrays and the pivots and queue of the shipped decks.
+constexpr double kLightingHostBytesPerCell = 50;
+
 // A detonator fires at t0:
 // - Point: at a;
 // - Line: along the segment a -> b;

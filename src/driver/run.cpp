@@ -17,6 +17,7 @@
 #include "config/scene.hpp"
 #include "core/error.hpp"
 #include "core/mpi_env.hpp"
+#include "driver/memory.hpp"
 #include "driver/signals.hpp"
 #include "driver/simulation.hpp"
 #include "io/checkpoint.hpp"
@@ -111,34 +112,6 @@ std::vector<std::string> earlier_outputs(const std::string& dir) {
   return out;
 }
 
-// Memory the run's arrays take on each rank (bytes): the hydro's cell and node fields and the
-// per-material state, over each block with its ghost layers (kernels/hydro/hydro.cpp and
-// kernels/materials/layout.cpp allocate them). Compact pools are sized for 10 % mixed cells.
-double memory_estimate(const Mesh& mesh, const Scene& s) {
-  double ec = 1, en = 1;
-  for (int d = 0; d < 3; ++d) {
-    ec *= mesh.extent(Centering::Cell, d);
-    en *= mesh.extent(Centering::Node, d);
-  }
-  const int nmat = static_cast<int>(s.materials.size());
-  double reals = 8 * ec + 15 * en;  // rho e p c q p_half pre/post_vol; nodes and face fluxes
-  if (nmat == 1) reals += 6 * en;   // single-material mass and energy face fluxes
-  // the modules' fields (kernels/strength/module.hpp, kernels/burn/module.hpp)
-  if (nmat == 1 && s.materials[0].strength.kind != strength::kNoStrength)
-    reals += 14 * ec + 3 * en;  // s, s_half (6 each), plastic strain, scratch; nodal forces
-  if (nmat == 1 && s.materials[0].burn.on) reals += 3 * ec;  // F, lighting time, scratch
-  double ints = 0;
-  if (nmat > 1) {
-    if (s.numerics.layout == mat::LayoutKind::Dense) {
-      reals += nmat * (5 * ec + 3 * en);
-    } else {
-      ints += 2 * 3 * ec;
-      reals += 2 * 11 * 0.1 * ec * nmat;
-    }
-  }
-  return reals * sizeof(Real) + ints * sizeof(int);
-}
-
 // Memory this node has free for the ranks on it (MemAvailable), bytes; < 0 if unknown.
 double available_memory() {
   std::ifstream in("/proc/meminfo");
@@ -148,13 +121,6 @@ double available_memory() {
   while (in >> key >> kb >> unit)
     if (key == "MemAvailable:") return kb * 1024.0;
   return -1;
-}
-
-std::string mib(double bytes) {
-  std::ostringstream os;
-  os.precision(3);
-  os << bytes / (1024.0 * 1024.0) << " MiB";
-  return os.str();
 }
 
 }  // namespace
@@ -181,10 +147,12 @@ int run(const CommandLine& cl) {
     check_output_path(settings.output_dir, scene);
 
     // Memory up front: estimate, compare with what the node has, before allocating.
+    MemoryEstimate estimate;
     double per_rank = 0, node_total = 0, node_avail = -1;
     {
-      const Mesh probe(scene.mesh, MPI_COMM_WORLD);
-      per_rank = memory_estimate(probe, scene);
+      const Mesh block(scene.mesh, MPI_COMM_WORLD);
+      estimate = estimate_memory(scene, block);
+      per_rank = estimate.total();
       MPI_Comm node;
       MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
       MPI_Allreduce(&per_rank, &node_total, 1, MPI_DOUBLE, MPI_SUM, node);
@@ -198,9 +166,9 @@ int run(const CommandLine& cl) {
       if (cl.check_only) {
         log_line("minipagosa " + std::string(MINIPAGOSA_VERSION) + ": scene '" + scene.name +
                  "' (" + scene.file + ")");
-        log_line("  mesh: " + probe.describe());
-        log_line("  memory estimate: " + mib(max_rank) + " per rank (largest block), " +
-                 mib(node_total) + " on this node" +
+        log_line("  mesh: " + block.describe());
+        log_line("  memory estimate: " + estimate.text() + " per rank; " + mib(max_rank) +
+                 " on the largest block, " + mib(node_total) + " on this node" +
                  (node_avail >= 0 ? ", " + mib(node_avail) + " available" : std::string()));
       }
       if (worst > 0)
@@ -209,7 +177,9 @@ int run(const CommandLine& cl) {
                          mib(node_avail) + " available; use a coarser mesh.cells or more nodes");
     }
     if (cl.check_only) {
-      log_line("deck, decomposition and memory are valid; nothing allocated or run (--check)");
+      log_line(
+          "deck, decomposition and memory are valid; the run's arrays not allocated, nothing run "
+          "(--check)");
       return 0;
     }
 
@@ -265,7 +235,7 @@ int run(const CommandLine& cl) {
              std::to_string(ExecSpace().concurrency()) +
              " threads per rank, Real = " + (sizeof(Real) == 8 ? "double" : "float") +
              (openmp_binding().empty() ? std::string() : "; " + openmp_binding()));
-    log_line("  memory estimate: " + mib(per_rank) + " per rank");
+    log_line("  memory estimate: " + estimate.text() + " per rank");
     for (const auto& m : sim.modules()) log_line("  module " + m);
     if (restart_path.empty())
       sim.initialize();

@@ -78,14 +78,18 @@ std::string Simulation::setup_text() const {
 
 Simulation::~Simulation() = default;
 
-std::string Simulation::write_dump(double t, long cycle) {
-  ProfileRegion region("output::dump");
-  if (!writer_) return "";
+std::vector<OutputField> Simulation::dump_fields() const {
   auto fields = hydro_->output_fields();
   if (const mat::MaterialState* mm = hydro_->materials())
     for (int m = 0; m < mm->nmat(); ++m)
       fields.push_back({"fraction_" + scene_.materials[m].name, Centering::Cell, mm->fraction(m)});
-  const std::string path = writer_->write(fields, t, static_cast<int>(cycle));
+  return fields;
+}
+
+std::string Simulation::write_dump(double t, long cycle) {
+  ProfileRegion region("output::dump");
+  if (!writer_) return "";
+  const std::string path = writer_->write(dump_fields(), t, static_cast<int>(cycle));
   const std::string file = path.substr(path.rfind('/') + 1);
   bool known = false;
   for (auto& d : dumps_)

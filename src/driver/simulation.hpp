@@ -76,6 +76,9 @@ class Simulation {
   RunResult run();
   // Writes a checkpoint of the current state now (collective); returns its path.
   std::string write_checkpoint_now();
+  // The fields a dump holds (the hydro's and its modules' kDump fields, each material's volume
+  // fraction); derived ones are computed into new arrays.
+  std::vector<OutputField> dump_fields() const;
   // The fields a checkpoint holds (cell rho, e; node u, v, w; per material alpha, rho, e; the
   // modules' registered state).
   std::vector<OutputField> checkpoint_fields() const;
