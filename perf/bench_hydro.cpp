@@ -21,6 +21,7 @@
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
+#include "paths.hpp"
 #include "report.hpp"
 #include "runtime.hpp"
 
@@ -33,7 +34,7 @@ int main(int argc, char** argv) {
     CLI::App app{"minipagosa single-material hydro benchmark"};
     std::vector<int> sizes{32, 64};
     int cycles = 40, warmup = 5;
-    std::string deck = std::string(MINIPAGOSA_SOURCE_DIR) + "/configs/sedov.yaml";
+    std::string deck = mp::test::source_dir() + "/configs/sedov.yaml";
     std::string json;
     bool no_breakdown = false;
     app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");

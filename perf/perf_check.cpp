@@ -57,6 +57,7 @@
 #include "cycle_timer.hpp"
 #include "driver/simulation.hpp"
 #include "kernel_timer.hpp"
+#include "paths.hpp"
 #include "protocol.hpp"
 #include "report.hpp"
 #include "runtime.hpp"
@@ -450,7 +451,7 @@ int check(int argc, char** argv) {
   // Set-up: the scenes, warmed up.
   const std::string c = std::to_string(mode.sedov_cells);
   const Scene sedov = read_scene(Deck::load(
-      std::string(MINIPAGOSA_SOURCE_DIR) + "/configs/sedov.yaml",
+      mp::test::source_dir() + "/configs/sedov.yaml",
       {"mesh.cells=[" + c + "," + c + "," + c + "]", "time.end=1e9", "regions.1.radius=0.15"}));
   auto single = make_run(sedov);
   auto compact = make_run(

@@ -18,6 +18,7 @@
 
 #include "config/scene.hpp"
 #include "driver/simulation.hpp"
+#include "paths.hpp"
 #include "runtime.hpp"
 
 using namespace mp;
@@ -81,7 +82,7 @@ int main(int argc, char** argv) {
       rc = app.exit(e);
     }
     if (rc == 0) {
-      const std::string dir = std::string(MINIPAGOSA_SOURCE_DIR) + "/configs/";
+      const std::string dir = mp::test::source_dir() + "/configs/";
       if (scenes.empty())
         for (const auto& e : std::filesystem::directory_iterator(dir))
           if (e.path().extension() == ".yaml") scenes.push_back(e.path().filename().string());

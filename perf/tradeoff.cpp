@@ -38,9 +38,10 @@
 #include <vector>
 
 #include "config/scene.hpp"
+#include "core/memory.hpp"
 #include "driver/simulation.hpp"
 #include "exact/norms.hpp"
-#include "core/memory.hpp"
+#include "paths.hpp"
 #include "runtime.hpp"
 #include "support.hpp"
 
@@ -94,8 +95,8 @@ Point run(const std::string& scene_name, int cells, const std::vector<std::strin
   else
     ov.push_back("mesh.cells=[" + n + ",2,2]");
   ov.push_back("output.write=false");
-  const Scene scene = read_scene(
-      Deck::load(std::string(MINIPAGOSA_SOURCE_DIR) + "/configs/" + deck_of(scene_name), ov));
+  const Scene scene =
+      read_scene(Deck::load(mp::test::source_dir() + "/configs/" + deck_of(scene_name), ov));
   RunSettings settings;
   settings.quiet = true;
   std::vector<double> f_start;  // sphere: the ball's initial fractions, painted and not run

@@ -4,8 +4,9 @@
 // that CMake computed (MP_EXE_FROM_TESTS), taken from the test binary's own location
 // (/proc/self/exe), so a test binary run by hand, or from a build directory carried to another
 // directory or machine, still finds it. The source tree is the one CMake configured
-// (MP_SOURCE_DIR) where it exists, else the working directory or its parent, whichever holds
-// configs/. Both come back absolute (the command-line tests change directory before running).
+// (configured_source_dir(), tests/paths.cpp) where it exists, else the working directory or its
+// parent, whichever holds configs/. Both come back absolute (the command-line tests change
+// directory before running).
 #pragma once
 #include <cstdlib>
 #include <filesystem>
@@ -13,6 +14,9 @@
 #include <system_error>
 
 namespace mp::test {
+
+// The source tree CMake configured (library mp_test_paths: tests/paths.cpp).
+const char* configured_source_dir();
 
 inline std::string minipagosa_exe() {
   namespace fs = std::filesystem;
@@ -27,7 +31,7 @@ inline std::string source_dir() {
   namespace fs = std::filesystem;
   if (const char* s = std::getenv("MINIPAGOSA_SOURCE_DIR"); s && *s) return s;
   const fs::path cwd = fs::current_path();
-  for (const fs::path& dir : {fs::path(MP_SOURCE_DIR), cwd, cwd.parent_path()}) {
+  for (const fs::path& dir : {fs::path(configured_source_dir()), cwd, cwd.parent_path()}) {
     std::error_code ec;
     if (fs::is_directory(dir / "configs", ec)) return dir.string();
   }
