@@ -18,7 +18,8 @@
 //                 (test_multimat's sphere advection measure)
 //   elastic       |c/c_long - 1| of the elastic front's speed (test_strength_cycle's measure;
 //                 the deck's Steinberg-Guinan model)
-// Axes: resolution; advection second | first; remap split | unsplit (single-material scenes);
+// Axes: resolution; advection second | third | first; remap split | unsplit (single-material
+// scenes);
 // KE fix on | off (Noh); interface youngs | slic | none, closure equal_strain | relaxation,
 // layout compact | dense (multi-material scenes).
 // Precision is the build's (run the float build's harness too and give both JSON files to
@@ -223,6 +224,7 @@ int sweep_main(int argc, char** argv) {
   const std::vector<std::vector<std::string>> single = {
       {"numerics.advection=second", "numerics.remap=split"},
       {"numerics.advection=second", "numerics.remap=unsplit"},
+      {"numerics.advection=third", "numerics.remap=split"},
       {"numerics.advection=first", "numerics.remap=split"}};
   // Noh: the KE fix's axis too, and on the spherical one the scalar viscosity (the tensor
   // viscosity's isotropic limit, docs/numerics.md "Tensor viscosity") and no heat flux (it acts
@@ -259,19 +261,23 @@ int sweep_main(int argc, char** argv) {
            {"numerics.interface=youngs", "numerics.closure=equal_strain", "numerics.layout=dense"},
            {"numerics.interface=slic", "numerics.closure=equal_strain", "numerics.layout=compact"},
            {"numerics.interface=youngs", "numerics.closure=relaxation", "numerics.layout=compact"},
+           {"numerics.interface=youngs", "numerics.advection=third", "numerics.layout=compact"},
            {"numerics.interface=youngs", "numerics.advection=first", "numerics.layout=compact"}});
     else if (s == "water_air")
-      sweep(s, {100, 200}, {100, 200, 400, 800},
-            {{"numerics.interface=youngs", "numerics.closure=equal_strain"},
-             {"numerics.interface=youngs", "numerics.closure=relaxation"},
-             {"numerics.interface=slic", "numerics.closure=relaxation"},
-             {"numerics.interface=youngs", "numerics.closure=relaxation",
-              "numerics.advection=first"}});
+      sweep(
+          s, {100, 200}, {100, 200, 400, 800},
+          {{"numerics.interface=youngs", "numerics.closure=equal_strain"},
+           {"numerics.interface=youngs", "numerics.closure=relaxation"},
+           {"numerics.interface=slic", "numerics.closure=relaxation"},
+           {"numerics.interface=youngs", "numerics.closure=relaxation", "numerics.advection=third"},
+           {"numerics.interface=youngs", "numerics.closure=relaxation",
+            "numerics.advection=first"}});
     else if (s == "sphere")
       sweep(s, {16, 24}, {16, 24, 32, 48},
             {{"numerics.interface=youngs", "numerics.layout=compact"},
              {"numerics.interface=youngs", "numerics.layout=dense"},
              {"numerics.interface=slic", "numerics.layout=compact"},
+             {"numerics.interface=youngs", "numerics.layout=compact", "numerics.advection=third"},
              {"numerics.interface=none", "numerics.layout=compact"}});
     else {
       std::fprintf(stderr, "tradeoff: unknown scene '%s'\n", s.c_str());
