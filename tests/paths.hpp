@@ -8,10 +8,12 @@
 // parent, whichever holds configs/. Both come back absolute (the command-line tests change
 // directory before running).
 #pragma once
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <system_error>
+#include <vector>
 
 namespace mp::test {
 
@@ -36,6 +38,17 @@ inline std::string source_dir() {
     if (fs::is_directory(dir / "configs", ec)) return dir.string();
   }
   return cwd.string();
+}
+
+// Every shipped deck (configs/*.yaml of the source tree), full paths, sorted.
+inline std::vector<std::string> shipped_decks() {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(source_dir() + "/configs", ec))
+    if (e.path().extension() == ".yaml") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 }  // namespace mp::test

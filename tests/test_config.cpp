@@ -1,6 +1,5 @@
 // Strict deck reading: every bad input is an InputError naming file:line, the full key path and
 // a specific hint; --set overrides are reported as such; every shipped deck parses.
-#include <dirent.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -465,16 +464,8 @@ TEST(Deck, WaveShapeAndDiagonal) {
 
 TEST(Deck, ShippedDecksParse) {
   const std::string dir = mp::test::source_dir() + "/configs";
-  DIR* d = opendir(dir.c_str());
-  ASSERT_NE(d, nullptr) << "cannot open " << dir;
-  std::vector<std::string> files;
-  while (const dirent* ent = readdir(d)) {
-    const std::string name = ent->d_name;
-    if (name.size() > 5 && name.compare(name.size() - 5, 5, ".yaml") == 0)
-      files.push_back(dir + "/" + name);
-  }
-  closedir(d);
-  std::sort(files.begin(), files.end());
+  const std::vector<std::string> files = mp::test::shipped_decks();
+  ASSERT_FALSE(files.empty()) << "no decks in " << dir;
   // every shipped deck, by name: a deck deleted or renamed fails here (the README's scenes table
   // lists them)
   const std::vector<std::string> expected = {

@@ -2,7 +2,6 @@
 // reader accepts (minipagosa --list-keys writes it from the reader), every shipped deck uses
 // only keys the reader accepts, and every deck's header stays short (at most 15 comment lines
 // before its first key; history and measurements live in docs/studies/).
-#include <dirent.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -37,21 +36,6 @@ std::vector<std::string> lines_of(const std::string& text) {
   std::stringstream ss(text);
   for (std::string line; std::getline(ss, line);) out.push_back(line);
   return out;
-}
-
-std::vector<std::string> shipped_decks() {
-  const std::string dir = source_dir() + "/configs";
-  std::vector<std::string> files;
-  if (DIR* d = opendir(dir.c_str())) {
-    while (const dirent* ent = readdir(d)) {
-      const std::string name = ent->d_name;
-      if (name.size() > 5 && name.compare(name.size() - 5, 5, ".yaml") == 0)
-        files.push_back(dir + "/" + name);
-    }
-    closedir(d);
-  }
-  std::sort(files.begin(), files.end());
-  return files;
 }
 
 // The rows of docs/options.md's tables: key -> the row's cells (type, range, default, meaning).
@@ -147,7 +131,7 @@ TEST(OptionsDoc, CatalogueReadsEveryListedKey) {
 // Every key of every shipped deck is one the catalogue knows (so docs/options.md lists it).
 TEST(OptionsDoc, ShippedDecksUseOnlyListedKeys) {
   const auto keys = mp::accepted_keys();
-  const auto decks = shipped_decks();
+  const auto decks = mp::test::shipped_decks();
   ASSERT_GE(decks.size(), 20u);
   for (const auto& file : decks) {
     for (const auto& kv : mp::Deck::load(file).values()) {
@@ -168,7 +152,7 @@ TEST(OptionsDoc, ShippedDecksUseOnlyListedKeys) {
 // A deck's header (the comment lines before its first key) says what the scene is, its source,
 // units, deviations and how to change the resolution, in at most 15 lines.
 TEST(Decks, HeadersAtMostFifteenCommentLines) {
-  const auto decks = shipped_decks();
+  const auto decks = mp::test::shipped_decks();
   ASSERT_GE(decks.size(), 20u);
   for (const auto& file : decks) {
     int comments = 0;
