@@ -217,9 +217,11 @@ std::vector<std::string> Simulation::modules() const {
             {mat.burn.forest_fire, "Forest Fire"}})
         if (on) kinds += (kinds.empty() ? "" : " + ") + std::string(word);
       os << "burn: " << kinds << " (" << mat.name << ", D=" << mat.burn.detonation_speed
-         << " cm/us, p_cj=" << mat.burn.cj_pressure << " Mbar, " << mat.burn.detonators.size()
-         << " detonator(s), ramp " << mat.burn.ramp_cells << " cells; "
-         << (mat.burn.unreacted.empty()
+         << " cm/us, p_cj=" << mat.burn.cj_pressure << " Mbar, ";
+      if (mat.burn.programmed || mat.burn.volume_burn)
+        os << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
+           << " cells; ";
+      os << (mat.burn.unreacted.empty()
                  ? std::string("p = F P_products")
                  : "p = (1-F) P_unreacted(rho, e-e0) + F P_products, unreacted '" +
                        mat.burn.unreacted + "'")
@@ -228,7 +230,8 @@ std::vector<std::string> Simulation::modules() const {
                        std::to_string(mat.burn.pop_b) + " log10 P/Mbar" +
                        (mat.burn.pop_plot.empty() ? "" : " ('" + mat.burn.pop_plot + "')")
                  : std::string())
-         << "; Huygens lighting times; fields burn_fraction, lighting_time)";
+         << (mat.burn.programmed || mat.burn.volume_burn ? "; Huygens lighting times" : "")
+         << "; fields burn_fraction, lighting_time)";
       m.push_back(os.str());
     }
   }
