@@ -86,4 +86,15 @@ inline std::vector<double> gather(const Mesh& mesh, const Field3& f, Centering c
   return out;
 }
 
+// How many values of two runs' gathered fields differ (the fields in the same order, each the
+// same size; a bitwise comparison, so 0 is the claim).
+inline long values_differ(const std::vector<std::vector<double>>& a,
+                          const std::vector<std::vector<double>>& b) {
+  long differ = 0;
+  for (std::size_t f = 0; f < a.size() && f < b.size(); ++f)
+    for (std::size_t i = 0; i < a[f].size() && i < b[f].size(); ++i)
+      differ += a[f][i] != b[f][i] ? 1 : 0;
+  return differ;
+}
+
 }  // namespace mp::test

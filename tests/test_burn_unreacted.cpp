@@ -227,10 +227,7 @@ TEST(BurnUnreacted, LayoutsAgreeBitForBitWithTheUnreactedEos) {
   }
   EXPECT_EQ(cycles[0], cycles[1]);
   ASSERT_EQ(fields[0].size(), fields[1].size());
-  long differ = 0;
-  for (std::size_t f = 0; f < fields[0].size(); ++f)
-    for (std::size_t i = 0; i < fields[0][f].size(); ++i)
-      differ += fields[0][f][i] != fields[1][f][i] ? 1 : 0;
+  const long differ = test::values_differ(fields[0], fields[1]);
   std::printf("dense vs compact: %zu fields, %ld values differ\n", fields[0].size(), differ);
   EXPECT_EQ(differ, 0);
 }

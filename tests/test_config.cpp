@@ -469,10 +469,9 @@ TEST(Deck, ShippedDecksParse) {
   // every shipped deck, by name: a deck deleted or renamed fails here (the README's scenes table
   // lists them)
   const std::vector<std::string> expected = {
-      "charge_3d",    "copper_wall", "elastic_wave", "leblanc",
-      "mader",        "noh",         "noh_planar",   "perforator",
-      "products_air", "sedov",       "smooth_wave",  "sod2",
-      "sod_x",        "sod_y",       "sod_z",        "sphere_advection",
+      "charge_3d",    "copper_wall", "elastic_wave", "fragment_3d",  "leblanc", "mader",
+      "noh",          "noh_planar",  "perforator",   "products_air", "sedov",   "shock_initiation",
+      "smooth_wave",  "sod2",        "sod_x",        "sod_y",        "sod_z",   "sphere_advection",
       "taylor_anvil", "test123",     "triple_point", "water_air"};
   std::vector<std::string> found;
   for (const auto& f : files) found.push_back(f.substr(dir.size() + 1, f.size() - dir.size() - 6));

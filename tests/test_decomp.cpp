@@ -233,3 +233,13 @@ TEST(Decomposition, MultiMaterialStrengthAndBurnIdenticalOn1_2_4Ranks) {
         "charge_3d.yaml",
         {"time.end=1.2", "output.write=false", std::string("numerics.layout=") + layout}));
 }
+
+// Forest Fire in a multi-material scene (configs/fragment_3d.yaml: a copper fragment
+// shock-initiates PBX 9404, nothing lit): the rate of the explosive's own pressure in mixed and
+// pure cells, its burn fraction carried on its mass flux, in both layouts.
+TEST(Decomposition, ForestFireIdenticalOn1_2_4RanksBothLayouts) {
+  for (const char* layout : {"compact", "dense"})
+    compare_rank_counts(test::load_scene(
+        "fragment_3d.yaml",
+        {"time.end=1.0", "output.write=false", std::string("numerics.layout=") + layout}));
+}

@@ -23,7 +23,10 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   mixed_ = setup.mixed;
   unreacted_ = setup.unreacted;
   e0_ = setup.e0;
-  reactive_ = {-1, f_, params_.d_cj, mixed_, unreacted_, e0_};
+  ff_on_ = setup.forest_fire;
+  ff_ = setup.ff;
+  c_floor_ = setup.programmed || setup.volume_burn ? params_.d_cj : Real(0);
+  reactive_ = {-1, f_, c_floor_, mixed_, unreacted_, e0_};
   if (!setup.programmed || setup.material >= 0) return;
   // every cell is explosive in a single-material scene, so the Huygens construction is the
   // straight-line distance
@@ -131,8 +134,9 @@ void Burn::scale_pressure(const Field3& p) const {
 }
 
 void Burn::raise_sound_speed(const Field3& c) const {
+  if (!(c_floor_ > 0)) return;
   auto f = f_;
-  const Real d = params_.d_cj;
+  const Real d = c_floor_;
   Kokkos::parallel_for(
       "burn::sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
         if (f(i, j, k) < 1) c(i, j, k) = mmax(c(i, j, k), d);
@@ -150,6 +154,9 @@ struct MixedFraction {
   Field3 f, tl;
   int x;
   Real never;
+  bool ff_on;
+  ForestFire ff;
+  Real dt;
 
   template <class Cell>
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, const Cell& cell) const {
@@ -157,6 +164,15 @@ struct MixedFraction {
       const mat::MatRef m = cell.get(s);
       if (m.m != x || !(m.alpha > 0)) continue;
       const Real f0 = f(i, j, k);
+      if (ff_on) {
+        // Forest Fire: at the explosive's own pressure (the mixture closure at F_old); no
+        // finish-at-once rule (lighting times mean nothing to it)
+        const Real r = *m.rho, e = *m.e;
+        const Real p = eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, e);
+        f(i, j, k) =
+            mmax(update_burn_fraction(b, f0, t, tl(i, j, k), r), forest_fire_step(ff, f0, p, dt));
+        continue;
+      }
       f(i, j, k) = tl(i, j, k) >= never && f0 > 0
                        ? Real(1)
                        : update_burn_fraction(b, f0, t, tl(i, j, k), *m.rho);
@@ -180,7 +196,22 @@ void Burn::update(const Field3& rho, double dt) {
     const int ng = Mesh::ng;
     const Real never = Real(kNeverLit);
     mm_->for_cells("burn::fraction", {ng, ng, ng}, mesh_.owned_end(),
-                   MixedFraction{b, t, f, tl, x, never});
+                   MixedFraction{b, t, f, tl, x, never, ff_on_, ff_, Real(dt)});
+    return;
+  }
+  if (ff_on_) {
+    // Forest Fire at the pressure of the mixture closure at (rho, e) after the Lagrangian step
+    // and F_old, with the programmed / volume fractions where those are on too
+    const ForestFire ff = ff_;
+    const Real h = Real(dt);
+    auto e = e_;
+    Kokkos::parallel_for(
+        "burn::fraction", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
+          const Real f0 = f(i, j, k), r = rho(i, j, k), ei = e(i, j, k);
+          const Real p = eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, ei);
+          f(i, j, k) =
+              mmax(update_burn_fraction(b, f0, t, tl(i, j, k), r), forest_fire_step(ff, f0, p, h));
+        });
     return;
   }
   Kokkos::parallel_for(
@@ -194,9 +225,10 @@ void Burn::remap(const std::array<bool, 3>& axes, const std::array<Field3, 3>& m
   mp::remap::remap_per_mass(mesh_, axes, mass_flux, rho, pre, {f_}, {scratch_}, order);
 }
 
-void Burn::after_eos(const Field3& /*rho*/, const Field3& /*e*/, const Field3& p,
+void Burn::after_eos(const Field3& /*rho*/, const Field3& e, const Field3& p,
                      const Field3& c) const {
   if (mm_) return;  // (the multi-material EOS applies F and D itself)
+  e_ = e;
   if (!mixed_) scale_pressure(p);
   raise_sound_speed(c);
 }

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "burn/burn.hpp"
+#include "burn/forest_fire.hpp"
 #include "burn/lighting.hpp"
 #include "hydro/module.hpp"
 #include "materials/layout.hpp"
@@ -47,6 +48,10 @@ struct BurnSetup {
   bool mixed = false;
   eos::Eos unreacted;
   Real e0 = 0;  // unreacted energy origin, cm^2/us^2 (E0 / rho0 of the products)
+  // Forest Fire (forest_fire.hpp): F also grows at the rate R(p) of the explosive's pressure;
+  // needs the unreacted EOS (mixed), whose Hugoniot and the products' EOS `ff` carries.
+  bool forest_fire = false;
+  ForestFire ff;
 };
 
 class Burn : public hydro::Module {
@@ -100,6 +105,9 @@ class Burn : public hydro::Module {
   const BurnParams& params() const { return params_; }
   // The closure with the unreacted solid's EOS (BurnSetup::mixed), its EOS and energy origin.
   bool mixed() const { return mixed_; }
+  // Forest Fire on, and its rate's data.
+  bool forest_fire() const { return ff_on_; }
+  const ForestFire& forest_fire_data() const { return ff_; }
   const eos::Eos& unreacted() const { return unreacted_; }
   Real e0() const { return e0_; }
 
@@ -115,6 +123,14 @@ class Burn : public hydro::Module {
   bool mixed_ = false;
   eos::Eos unreacted_;
   Real e0_ = 0;
+  bool ff_on_ = false;
+  ForestFire ff_;
+  // The sound speed's floor where F < 1: D with programmed or volume burn (their fronts run at
+  // D), none (0) with Forest Fire alone.
+  Real c_floor_ = 0;
+  // The single-material scene's cell energy (the hydro's, handed to after_eos): Forest Fire's
+  // pressure after the Lagrangian step.
+  mutable Field3 e_;
   BurnParams params_;
   Field3 f_, t_light_, scratch_;
   eos::Reactive reactive_;

@@ -59,6 +59,7 @@ materials:
       programmed: true
       volume_burn: true
       unreacted: pbx9404_unreacted
+      forest_fire: {pop_plot: pbx9404}
       detonators:
         - {type: point, at: [0, 0, 0], time: 0}
         - {type: line, from: [0, 0, 0], to: [0, 0, 1]}
@@ -91,6 +92,16 @@ regions:
   - {material: solid, shape: box, lo: [0, 0, 0], hi: [0.2, 0.2, 0.2], density: 2.7, pressure: 0}
   - {material: he, shape: box, lo: [0.8, 0.8, 0.8], hi: [1, 1, 1], density: 1.84, pressure: 0}
 )",
+    R"(scene: forest_fire
+mesh: {cells: [2, 2, 4], hi: [0.1, 0.1, 0.2]}
+time: {end: 1}
+materials:
+  - name: pbx
+    library: pbx9404_products
+    burn: {programmed: false, unreacted: pbx9404_unreacted,
+           forest_fire: {a: -2.37, b: -1.54}}
+regions: [{material: pbx, density: 1.844, energy: 0.0554}]
+)",
     R"(scene: faces
 mesh: {cells: [4, 4, 4], hi: [1, 1, 1]}
 boundaries: {x: {lo: outflow, hi: outflow}, y: outflow, z: {lo: periodic, hi: periodic}}
@@ -109,6 +120,7 @@ const std::map<std::string, std::string>& default_overrides() {
       {"materials[].burn.detonation_speed", "a JWL EOS's `D`; else required"},
       {"materials[].burn.cj_pressure", "a JWL EOS's `p_cj`; else required"},
       {"materials[].burn.detonators[].type", "required"},
+      {"materials[].burn.detonators", "required with `programmed: true`"},
       {"materials[].params", "the library entry's"},
       {"materials[].eos", "required without `library`"},
       {"boundaries.x", "`reflective`"},
@@ -271,6 +283,12 @@ const std::map<std::string, std::string>& key_notes() {
       {"materials[].burn.ramp_cells", "programmed burn's ramp, in largest cell edges"},
       {"materials[].burn.programmed", "programmed burn from lighting times"},
       {"materials[].burn.volume_burn", "CJ volume burn"},
+      {"materials[].burn.forest_fire",
+       "Forest Fire reactive burn from a Pop plot (needs `unreacted`)"},
+      {"materials[].burn.forest_fire.pop_plot",
+       "a cited Pop plot (kernels/burn/forest_fire.hpp: pbx9404); or give a and b"},
+      {"materials[].burn.forest_fire.a", "Pop plot log10(x*/cm) = a + b log10(P/Mbar): a"},
+      {"materials[].burn.forest_fire.b", "the Pop plot's slope b, < 0"},
       {"materials[].burn.unreacted",
        "library entry of the unreacted solid (Mie-Grueneisen; "
        "JWL products with E0)"},

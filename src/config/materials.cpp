@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "burn/forest_fire.hpp"
 #include "config/options.hpp"
 #include "config/readers.hpp"
 #include "materials/library.hpp"
@@ -107,13 +108,43 @@ void read_strength(const DeckNode& n, MaterialSpec& spec) {
     n.fail("steinberg_guinan needs the material's reference density 'rho0'");
 }
 
+// materials[].burn.forest_fire: {pop_plot: <a cited Pop plot of kernels/burn/forest_fire.hpp>}
+// or {a: .., b: ..} with log10(x*/cm) = a + b log10(P/Mbar), b < 0.
+void read_forest_fire(const DeckNode& n, BurnSpec& b) {
+  n.expect_keys({"pop_plot", "a", "b"});
+  b.forest_fire = true;
+  if (n.has("pop_plot")) {
+    if (n.has("a") || n.has("b"))
+      n.fail("give either 'pop_plot' (a cited Pop plot) or 'a' and 'b', not both");
+    b.pop_plot = n.get_string("pop_plot");
+    const burn::PopPlotData* d = burn::find_pop_plot(b.pop_plot.c_str());
+    if (!d) {
+      std::vector<std::string> names;
+      for (const auto& x : burn::kPopPlots) names.push_back(x.name);
+      n.child("pop_plot")
+          .fail("no Pop plot '" + b.pop_plot + "'; did you mean '" + nearest(b.pop_plot, names) +
+                "'?");
+    }
+    const burn::PopPlot pp = burn::pop_plot_from_gpa_mm(d->A, d->B);
+    b.pop_a = double(pp.a);
+    b.pop_b = double(pp.b);
+    return;
+  }
+  if (!n.has("a") || !n.has("b"))
+    n.fail("forest_fire needs 'pop_plot' (one of the cited Pop plots) or both 'a' and 'b'");
+  b.pop_a = n.get_real("a", -100, 100);
+  // the run distance must shrink as the pressure grows
+  b.pop_b = n.get_real("b", -100, -1e-6);
+}
+
 // materials[].burn: {detonation_speed: D, cj_pressure: p_cj (JWL materials default to their
 // D and p_cj), detonators: [{type: point, at: [x, y, z]} | {type: line, from: [..], to: [..]} |
 // {type: plane, at: [..], normal: [..]}, each with an optional firing time], ramp_cells: 2,
-// programmed: true, volume_burn: false, unreacted: <library name of the unreacted solid>}.
+// programmed: true, volume_burn: false, unreacted: <library name of the unreacted solid>,
+// forest_fire: {pop_plot: <name>} | {a: .., b: ..}}.
 void read_burn(const DeckNode& n, MaterialSpec& spec) {
   n.expect_keys({"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed",
-                 "volume_burn", "unreacted"});
+                 "volume_burn", "unreacted", "forest_fire"});
   BurnSpec& b = spec.burn;
   b.on = true;
   const bool jwl = spec.eos == "jwl";
@@ -130,7 +161,9 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
   b.ramp_cells = n.get_real("ramp_cells", 0.5, 100, 2);
   b.programmed = n.get_bool("programmed", true);
   b.volume_burn = n.get_bool("volume_burn", false);
-  if (!b.programmed && !b.volume_burn) n.fail("burn needs programmed and/or volume_burn true");
+  if (n.has("forest_fire")) read_forest_fire(n.child("forest_fire"), b);
+  if (!b.programmed && !b.volume_burn && !b.forest_fire)
+    n.fail("burn needs programmed and/or volume_burn true, or a forest_fire block");
   if (!(spec.rho0 > 0)) n.fail("burn needs the explosive's reference density 'rho0'");
   // the CJ state must be a compression: 1 - p_cj / (rho0 D^2) in (0, 1)
   if (!(b.cj_pressure < spec.rho0 * b.detonation_speed * b.detonation_speed))
@@ -153,6 +186,11 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
           "e0 = E0 / rho0)");
     b.unreacted = lib;
     b.unreacted_e0 = spec.params.at("E0") / spec.rho0;
+  } else if (b.forest_fire) {
+    n.child("forest_fire")
+        .fail(
+            "forest_fire needs the unreacted solid's EOS ('unreacted': its Hugoniot and the "
+            "mixture closure build the rate)");
   }
   if (b.programmed) {
     const DeckNode list = n.child("detonators");

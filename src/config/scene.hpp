@@ -1,4 +1,5 @@
-// A scene: everything one run needs, read strictly from a YAML deck (docs/decks.md; every key: docs/options.md).
+// A scene: everything one run needs, read strictly from a YAML deck (docs/decks.md; every key:
+// docs/options.md).
 #pragma once
 #include <array>
 #include <map>
@@ -42,6 +43,11 @@ struct BurnSpec {
   // e0 = E0 / rho0 of the JWL products (kernels/burn/burn.hpp he_pressure_mixed).
   std::string unreacted;
   double unreacted_e0 = 0;  // cm^2/us^2
+  // Forest Fire (kernels/burn/forest_fire.hpp): the Pop plot log10(x*/cm) = pop_a + pop_b
+  // log10(P/Mbar), from the cited table (pop_plot: its name) or given.
+  bool forest_fire = false;
+  std::string pop_plot;
+  double pop_a = 0, pop_b = 0;
 };
 
 struct MaterialSpec {

@@ -62,6 +62,18 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
     b.mixed = true;
     b.unreacted = materials::make_eos(*materials::find_material(bs.unreacted));
     b.e0 = Real(bs.unreacted_e0);
+    if (bs.forest_fire) {
+      const materials::MaterialData& u = *materials::find_material(bs.unreacted);
+      b.forest_fire = true;
+      b.ff.pop = {Real(bs.pop_a), Real(bs.pop_b)};
+      b.ff.rho0 = u.rho0;
+      b.ff.c0 = u.param("c0");
+      b.ff.s = u.param("s");
+      b.ff.e0 = b.e0;
+      b.ff.p_max = b.p_cj;
+      b.ff.unreacted = b.unreacted;
+      b.ff.products = material_eos(m, 0.0);
+    }
   }
   for (const DetonatorSpec& d : bs.detonators) {
     burn::Detonator det;
@@ -198,17 +210,28 @@ std::vector<std::string> Simulation::modules() const {
     }
     if (mat.burn.on) {
       std::ostringstream os;
-      os << "burn: " << (mat.burn.programmed ? "programmed" : "")
-         << (mat.burn.programmed && mat.burn.volume_burn ? " + " : "")
-         << (mat.burn.volume_burn ? "CJ volume" : "") << " (" << mat.name
-         << ", D=" << mat.burn.detonation_speed << " cm/us, p_cj=" << mat.burn.cj_pressure
-         << " Mbar, " << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
-         << " cells; "
-         << (mat.burn.unreacted.empty()
+      std::string kinds;
+      for (const auto& [on, word] :
+           {std::pair<bool, const char*>{mat.burn.programmed, "programmed"},
+            {mat.burn.volume_burn, "CJ volume"},
+            {mat.burn.forest_fire, "Forest Fire"}})
+        if (on) kinds += (kinds.empty() ? "" : " + ") + std::string(word);
+      os << "burn: " << kinds << " (" << mat.name << ", D=" << mat.burn.detonation_speed
+         << " cm/us, p_cj=" << mat.burn.cj_pressure << " Mbar, ";
+      if (mat.burn.programmed || mat.burn.volume_burn)
+        os << mat.burn.detonators.size() << " detonator(s), ramp " << mat.burn.ramp_cells
+           << " cells; ";
+      os << (mat.burn.unreacted.empty()
                  ? std::string("p = F P_products")
                  : "p = (1-F) P_unreacted(rho, e-e0) + F P_products, unreacted '" +
                        mat.burn.unreacted + "'")
-         << "; Huygens lighting times; fields burn_fraction, lighting_time)";
+         << (mat.burn.forest_fire
+                 ? "; Pop plot log10 x*/cm = " + std::to_string(mat.burn.pop_a) + " + " +
+                       std::to_string(mat.burn.pop_b) + " log10 P/Mbar" +
+                       (mat.burn.pop_plot.empty() ? "" : " ('" + mat.burn.pop_plot + "')")
+                 : std::string())
+         << (mat.burn.programmed || mat.burn.volume_burn ? "; Huygens lighting times" : "")
+         << "; fields burn_fraction, lighting_time)";
       m.push_back(os.str());
     }
   }
