@@ -1,4 +1,5 @@
-// A scene: everything one run needs, read strictly from a YAML deck (docs/decks.md; every key: docs/options.md).
+// A scene: everything one run needs, read strictly from a YAML deck (docs/decks.md; every key:
+// docs/options.md).
 #pragma once
 #include <array>
 #include <map>
@@ -112,6 +113,9 @@ struct OutputSpec {
   long checkpoint_cycles = 0;
   double checkpoint_seconds = 0;
   int checkpoint_keep = 2;
+  // The boundary mass ledger (output.mass_ledger): each material's mass out through each face
+  // of the mesh, in summary.json and the run log.
+  bool mass_ledger = false;
 };
 
 struct Scene {
