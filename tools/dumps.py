@@ -5,6 +5,7 @@ shaped (nz+1, ny+1, nx+1), one fraction_<material> per material, and the attribu
 origin, spacing, time, cycle (as tools/plot_slice.py reads them).
 """
 import glob
+import json
 import os
 import sys
 
@@ -107,3 +108,24 @@ def parse_plane(tool, text):
         return axis, float(value)
     except ValueError:
         fail(tool, f"--plane '{text}': expected x=VALUE, y=VALUE or z=VALUE")
+
+
+def node_to_cells(u):
+    """A node field (nz+1, ny+1, nx+1) at the cell centres: the mean of each cell's 8 nodes."""
+    return 0.125 * (u[:-1, :-1, :-1] + u[1:, :-1, :-1] + u[:-1, 1:, :-1] + u[:-1, :-1, 1:] +
+                    u[1:, 1:, :-1] + u[1:, :-1, 1:] + u[:-1, 1:, 1:] + u[1:, 1:, 1:])
+
+
+def write_report(prefix, data, text):
+    """PREFIX.json (data) and PREFIX.md (text), making PREFIX's directory; returns the paths."""
+    os.makedirs(os.path.dirname(prefix) or ".", exist_ok=True)
+    with open(prefix + ".json", "w") as f:
+        json.dump(data, f, indent=1)
+    with open(prefix + ".md", "w") as f:
+        f.write(text)
+    return [prefix + ".json", prefix + ".md"]
+
+
+def cell_ux(d):
+    """A dump's x velocity at the cell centres, shaped (z, y, x)."""
+    return node_to_cells(d.field("velocity_x"))

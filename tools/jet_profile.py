@@ -29,16 +29,9 @@ import dumps  # noqa: E402
 TOOL = "jet_profile"
 
 
-def cell_ux(d):
-    """x velocity at the cell centres: the mean of each cell's 8 nodes, shaped (z, y, x)."""
-    u = d.field("velocity_x")
-    return 0.125 * (u[:-1, :-1, :-1] + u[1:, :-1, :-1] + u[:-1, 1:, :-1] + u[:-1, :-1, 1:] +
-                    u[1:, 1:, :-1] + u[1:, :-1, 1:] + u[:-1, 1:, 1:] + u[1:, 1:, 1:])
-
-
 def profile(d, axis_y, axis_z, speeds):
     cu = d.fraction("copper")
-    ux = cell_ux(d)
+    ux = dumps.cell_ux(d)
     j, k = d.plane_index(1, axis_y), d.plane_index(2, axis_z)
     x = d.centres(0)
     row_f, row_u = cu[k, j, :], ux[k, j, :]

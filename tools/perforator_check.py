@@ -1,26 +1,43 @@
 #!/usr/bin/python3
-"""Scene check for configs/perforator.yaml (issue #13; not a CTest test): from the copper
-volume fraction of every dump, whether each charge's jet has perforated the carrier tube wall
-and the casing wall and entered the rock, and the copper jet tip's position and speed over time.
+"""The perforator's engineering answer from a run of configs/perforator.yaml (issue #52): per
+charge and per dump, what the jet has done to the carrier tube, the casing and the rock, and how
+the run compares with shaped-charge theory (tools/shaped_charge.py).
 
     /usr/bin/python3 tools/perforator_check.py output/perforator -o perf/results/perforator
 
-A wall counts as perforated at the first dump where a cell with copper fraction > 0.5 lies
-beyond the wall's outer surface along the charge axis (centre within --radius of the axis line,
-y = 0 the symmetry plane); beyond the casing's outer surface is the rock, where the casing also
-has to be pierced: less than half a cell of steel left ahead of the tip along its row (a casing
-pushed into the rock ahead of the copper, with steel still between them, is not; since
-2026-12-03, before which a bulge counted). The jet tip is the
-farthest such cell along the charge's direction; its speed is the tip's advance between dumps
-(dx/dt) and the copper-carrying cell's own axial velocity (the mean of its 8 node velocities).
-Writes PREFIX.json and PREFIX.md; prints the table.
+Per charge and dump (a charge's half of the mesh is z > 0 for the top charge, z < 0 for the
+bottom one; masses are the whole charge's: twice the y >= 0 half mesh's):
+- tip: the farthest cell along the charge's direction on its axis (cell centres within --radius
+  of the line y = 0, z = z_charge) with copper fraction > 0.5; its speed as the tip's advance
+  between dumps (dx/dt) and as the tip cell's axial velocity (the mean of its 8 nodes);
+- arrival: the first dump whose tip lies beyond the carrier's inner surface, through the carrier
+  (beyond its outer surface with less than half a cell of steel ahead of the tip along its row),
+  beyond the casing's inner surface, and in the rock (beyond the casing's outer surface, pierced
+  in the same sense: a casing bulged into the rock ahead of the copper is not);
+- hole diameters, once that wall is pierced: on a cylinder a quarter of the wall's thickness
+  inside each of its surfaces, the cells whose steel fraction is below 0.5, connected (4-way, on
+  the cylinder's y-z grid) to the charge axis; the area (doubled for y < 0) as the diameter of the
+  circle of that area (the casing's entrance: its inner surface; the exit: the outer one);
+- penetration into the rock: along the axis row, from the casing's outer surface to the first
+  0.5 crossing of the quartz fraction (the crater's depth), and the tip's own depth;
+- copper mass beyond each wall, and the jet: copper mass, axial momentum and axial extent on the
+  axis row of the copper moving faster than --cut along the charge's direction. Copper mass is
+  the copper fraction x 8.93 g/cm^3 x the cell volume: the dumps carry no per-material density,
+  and the jet's copper, near zero pressure, stays within a few per cent of its reference density;
+- theory (tools/shaped_charge.py): the PER tip speed and jet mass above --cut; the Birkhoff
+  hydrodynamic depth L = l sqrt(rho_jet / rho_target) of the fast jet's length l on the axis row
+  at the dump where the tip enters the rock, against the crater's final depth.
+- mass ledger (from summary.json beside the dumps): each material's mass at the start and end;
+  the Eulerian mesh changes a material's mass only through the boundaries.
+Writes PREFIX.json and PREFIX.md; prints the Markdown.
 
-The geometry defaults are configs/perforator.yaml's (cm): carrier axis x = -4.2164, outer
-radius 1.9939; casing axis x = 0, inner radius 6.2103, outer radius 6.9723; charges on y = 0 at
-z = +1.27 aimed +x (top) and z = -1.27 aimed -x (bottom), mouths at x = -3.0764 and -5.3564.
+The geometry defaults are configs/perforator.yaml's (cm): carrier axis x = -4.2164, radii 1.5494
+/ 1.9939; casing axis x = 0, radii 6.2103 / 6.9723; charges on y = 0 at z = +1.27 aimed +x (top)
+and z = -1.27 aimed -x (bottom), mouths at x = -3.0764 and -5.3564.
 """
 import argparse
 import json
+import math
 import os
 import sys
 
@@ -28,45 +45,172 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import dumps  # noqa: E402
+import shaped_charge  # noqa: E402
 
 TOOL = "perforator_check"
 CHARGES = [  # name, z of the axis, direction along x, x of the liner mouth
     ("top (aimed +x)", 1.27, +1.0, -3.0764),
     ("bottom (aimed -x)", -1.27, -1.0, -5.3564),
 ]
+RHO_COPPER = 8.93
+EVENTS = ("carrier_reached", "carrier_through", "casing_reached", "rock")
 
 
-def walls(a):
-    """Per direction: the x of the carrier's outer surface, the casing's inner and outer."""
-    return {+1.0: (a.carrier_x + a.carrier_outer, a.casing_inner, a.casing_outer),
-            -1.0: (a.carrier_x - a.carrier_outer, -a.casing_inner, -a.casing_outer)}
+class Walls:
+    """The walls one charge's jet meets, as surfaces along its direction."""
+
+    def __init__(self, a, direction):
+        s = direction
+        self.carrier = (a.carrier_x, a.carrier_inner, a.carrier_outer)
+        self.casing = (0.0, a.casing_inner, a.casing_outer)
+        # x of each surface on the charge axis (y = 0), in the jet's direction
+        self.x = {"carrier_inner": a.carrier_x + s * a.carrier_inner,
+                  "carrier_outer": a.carrier_x + s * a.carrier_outer,
+                  "casing_inner": s * a.casing_inner,
+                  "casing_outer": s * a.casing_outer}
 
 
-def probe(d, copper, vx, steel, z0, direction, radius):
-    """The tip (farthest copper cell centre along `direction`) on the axis line y = 0, z = z0,
-    that cell's axial velocity, and the steel cap ahead of it: the sum of the steel fractions of
-    the contiguous cells beyond the tip along its row that hold steel (> 0.05), in cells; None if
-    no copper cell there."""
-    y, z = d.centres(1), d.centres(2)
-    near = (np.abs(z[:, None] - z0) ** 2 + y[None, :] ** 2) <= radius ** 2  # (nz, ny)
-    if not near.any():
-        dumps.fail(TOOL, f"no cell centre within {radius:g} of the axis z = {z0:g}; "
-                   "raise --radius")
-    x = d.centres(0)
-    mask = (copper > 0.5) & near[:, :, None]
-    if not mask.any():
-        return None
-    ks, js, iis = np.nonzero(mask)
-    s = direction * x[iis]
-    n = int(np.argmax(s))
-    k, j, i = ks[n], js[n], iis[n]
-    u = vx[k:k + 2, j:j + 2, i:i + 2].mean()
-    step = 1 if direction > 0 else -1
+def steel_ahead(steel, k, j, i, step):
+    """Steel fractions summed over the contiguous cells beyond (k, j, i) along x that hold steel."""
     cap, n = 0.0, i + step
-    while 0 <= n < len(x) and steel[k, j, n] > 0.05:
+    while 0 <= n < steel.shape[2] and steel[k, j, n] > 0.05:
         cap += float(steel[k, j, n])
         n += step
-    return float(x[i]), float(direction * u), cap
+    return cap
+
+
+def hole(d, steel, axis_x, radius, z0, direction):
+    """Equivalent diameter (cm) and height/width of the opening in a wall about the z-parallel
+    axis (axis_x, 0) on the cylinder of `radius`, around the point facing the charge axis
+    (y = 0, z = z0); 0 if that point is steel."""
+    y, z = d.centres(1), d.centres(2)
+    x0, dx = d.origin[0], d.spacing[0]
+    open_ = np.zeros((len(z), len(y)), dtype=bool)
+    for jj, yy in enumerate(y):
+        if yy >= radius:
+            continue
+        x = axis_x + direction * math.sqrt(radius * radius - yy * yy)
+        i = int(math.floor((x - x0) / dx))
+        if 0 <= i < steel.shape[2]:
+            open_[:, jj] = steel[:, jj, i] < 0.5
+    k0 = d.plane_index(2, z0)
+    if not open_[k0, 0]:
+        return 0.0, 0.0, 0.0
+    seen = np.zeros_like(open_)
+    stack, cells = [(k0, 0)], []
+    seen[k0, 0] = True
+    while stack:
+        k, j = stack.pop()
+        cells.append((k, j))
+        for kk, jj in ((k + 1, j), (k - 1, j), (k, j + 1), (k, j - 1)):
+            if 0 <= kk < open_.shape[0] and 0 <= jj < open_.shape[1] and open_[kk, jj] \
+                    and not seen[kk, jj]:
+                seen[kk, jj] = True
+                stack.append((kk, jj))
+    ks = np.array([c[0] for c in cells])
+    js = np.array([c[1] for c in cells])
+    area = 2.0 * len(cells) * d.spacing[1] * d.spacing[2]
+    height = (ks.max() - ks.min() + 1) * d.spacing[2]
+    width = 2.0 * (js.max() + 1) * d.spacing[1]
+    return math.sqrt(4 * area / math.pi), float(height), float(width)
+
+
+def crater_depth(d, quartz, k, j, x_outer, direction):
+    """Depth beyond the casing's outer surface, along the row (k, j), of the first 0.5 crossing
+    of the quartz fraction (linear between cell centres)."""
+    x = d.centres(0)
+    row = quartz[k, j, :]
+    order = np.argsort(direction * x)
+    prev = None
+    for i in order:
+        if direction * (x[i] - x_outer) < 0:
+            continue
+        if row[i] >= 0.5:
+            if prev is None:
+                return 0.0
+            f0, f1 = row[prev], row[i]
+            xc = x[prev] + (0.5 - f0) / (f1 - f0) * (x[i] - x[prev])
+            return max(0.0, float(direction * (xc - x_outer)))
+        prev = i
+    return float(direction * (x[order[-1]] - x_outer))
+
+
+def measure(d, a, name, z0, direction, mouth, walls, cut):
+    copper, steel, quartz = d.fraction("copper"), d.fraction("steel"), d.fraction("quartz")
+    ux = dumps.cell_ux(d)
+    x, y, z = d.centres(0), d.centres(1), d.centres(2)
+    vol = float(np.prod(d.spacing))
+    zone = float(d.spacing.max())
+    radius = a.radius if a.radius is not None else zone
+    near = (np.abs(z[:, None] - z0) ** 2 + y[None, :] ** 2) <= radius ** 2
+    if not near.any():
+        dumps.fail(TOOL, f"no cell centre within {radius:g} of the axis z = {z0:g}; raise --radius")
+    row = {"time": d.time, "cycle": d.cycle}
+    half = (z > 0) if z0 > 0 else (z < 0)
+    cu = np.where(half[:, None, None], copper, 0.0)
+    mass = cu * RHO_COPPER * vol * 2.0  # whole charge
+    sx = direction * x[None, None, :]
+    row["copper_beyond"] = {w: float(mass[np.broadcast_to(sx > direction * walls.x[w],
+                                                          mass.shape)].sum())
+                            for w in ("carrier_outer", "casing_inner", "casing_outer")}
+    fast = direction * ux > cut
+    row["jet_mass"] = float(mass[fast].sum())
+    row["jet_momentum"] = float((mass * direction * ux)[fast].sum())
+    k, j = d.plane_index(2, z0), 0
+    on_row = np.nonzero((copper[k, j, :] > 0.5) & (direction * ux[k, j, :] > cut))[0]
+    row["jet_length"] = float(x[on_row].max() - x[on_row].min() + d.spacing[0]) \
+        if on_row.size else 0.0
+    mask = (copper > 0.5) & near[:, :, None]
+    row.update(tip_x=None, tip_speed_cell=None, beyond_mouth=None, steel_ahead=None)
+    row["events"] = {}
+    if mask.any():
+        ks, js, iis = np.nonzero(mask)
+        n = int(np.argmax(direction * x[iis]))
+        kt, jt, it = ks[n], js[n], iis[n]
+        row["tip_x"] = float(x[it])
+        row["tip_speed_cell"] = float(direction * ux[kt, jt, it])
+        row["beyond_mouth"] = float(direction * (x[it] - mouth))
+        cap = steel_ahead(steel, kt, jt, it, 1 if direction > 0 else -1)
+        row["steel_ahead"] = cap
+        past = {w: bool(direction * (x[it] - walls.x[w]) > 0) for w in walls.x}
+        row["events"] = {"carrier_reached": past["carrier_inner"],
+                         "carrier_through": past["carrier_outer"] and bool(cap < 0.5),
+                         "casing_reached": past["casing_inner"],
+                         "rock": past["casing_outer"] and bool(cap < 0.5)}
+    ev = row["events"]
+    cx, ci, co = walls.carrier
+    t = (co - ci) / 4
+    row["carrier_hole"] = hole(d, steel, cx, ci + t, z0, direction)[0] \
+        if ev.get("carrier_through") else None
+    _, ci, co = walls.casing
+    t = (co - ci) / 4
+    if ev.get("rock"):
+        row["casing_entrance"] = hole(d, steel, 0.0, ci + t, z0, direction)
+        row["casing_exit"] = hole(d, steel, 0.0, co - t, z0, direction)
+        row["crater_depth"] = crater_depth(d, quartz, k, j, walls.x["casing_outer"], direction)
+        row["tip_depth"] = float(direction * (row["tip_x"] - walls.x["casing_outer"]))
+    else:
+        row["casing_entrance"] = row["casing_exit"] = None
+        row["crater_depth"] = row["tip_depth"] = None
+    return row
+
+
+def ledger(run):
+    path = os.path.join(run, "summary.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        s = json.load(f)
+    start, end = s.get("start", {}), s.get("end", {})
+    m0, m1 = start.get("material_mass"), end.get("material_mass")
+    if not m0 or not m1:
+        return None
+    return {m: {"start": m0[m], "end": m1[m], "lost_relative": (m0[m] - m1[m]) / m0[m]
+                if m0[m] else 0.0} for m in m0}
+
+
+def fmt(v, f="{:.3f}"):
+    return "—" if v is None else f.format(v + 0.0)
 
 
 def main():
@@ -75,7 +219,9 @@ def main():
     ap.add_argument("-o", "--output", default=None, help="prefix of the .json and .md")
     ap.add_argument("--radius", type=float, default=None,
                     help="probe radius about the axis, cm (default: one zone)")
+    ap.add_argument("--cut", type=float, default=0.2, help="jet speed cut, cm/us (default 0.2)")
     ap.add_argument("--carrier-x", type=float, default=-4.2164)
+    ap.add_argument("--carrier-inner", type=float, default=1.5494)
     ap.add_argument("--carrier-outer", type=float, default=1.9939)
     ap.add_argument("--casing-inner", type=float, default=6.2103)
     ap.add_argument("--casing-outer", type=float, default=6.9723)
@@ -83,95 +229,120 @@ def main():
                     help="which charges to probe (a cut-down deck such as "
                          "perf/studies/perforator_top_across_well.yaml holds one)")
     a = ap.parse_args()
-    global CHARGES
-    if a.charges != "both":
-        CHARGES = [c for c in CHARGES if c[0].startswith(a.charges)]
+    charges = [c for c in CHARGES if a.charges == "both" or c[0].startswith(a.charges)]
 
     runs = dumps.list_dumps(TOOL, a.run)
-    wall = walls(a)
-    rows = {name: [] for name, *_ in CHARGES}
-    first_cross = {name: {"carrier": None, "casing_inner": None, "rock": None}
-                   for name, *_ in CHARGES}
+    rows = {name: [] for name, *_ in charges}
     zone = None
     for t, cycle, path in runs:
         d = dumps.Dump(TOOL, path)
         zone = float(d.spacing.max())
-        radius = a.radius if a.radius is not None else zone
-        copper = d.fraction("copper")
-        vx = d.field("velocity_x")
-        steel = d.fraction("steel")
-        for name, z0, direction, mouth in CHARGES:
-            tip = probe(d, copper, vx, steel, z0, direction, radius)
-            row = {"time": t, "cycle": cycle, "tip_x": None, "tip_speed_cell": None,
-                   "beyond_mouth": None, "steel_cap_cells": None}
-            if tip:
-                row["tip_x"], row["tip_speed_cell"], row["steel_cap_cells"] = tip
-                row["beyond_mouth"] = direction * (tip[0] - mouth)
-                for key, x_wall in zip(("carrier", "casing_inner", "rock"), wall[direction]):
-                    beyond = direction * (tip[0] - x_wall) > 0
-                    # in the rock: beyond the casing's outer surface with less than half a
-                    # cell of steel ahead (a casing bulged into the rock ahead of the copper
-                    # is not pierced)
-                    if key == "rock":
-                        beyond = beyond and tip[2] < 0.5
-                    if first_cross[name][key] is None and beyond:
-                        first_cross[name][key] = t
-            rows[name].append(row)
-    # tip speed from the advance between dumps (centred on the later dump)
-    for name, *_ in CHARGES:
+        for name, z0, direction, mouth in charges:
+            rows[name].append(measure(d, a, name, z0, direction, mouth, Walls(a, direction),
+                                      a.cut))
+    theory = shaped_charge.predict(cut=a.cut)
+    theory.pop("elements")
+    result = {"run": os.path.abspath(a.run), "zone_cm": zone, "speed_cut": a.cut,
+              "last_time": runs[-1][0], "theory": theory, "mass_ledger": ledger(a.run),
+              "charges": {}}
+    for name, z0, direction, mouth in charges:
         r = rows[name]
         for n in range(len(r)):
             r[n]["tip_speed_dxdt"] = None
             if n and r[n]["tip_x"] is not None and r[n - 1]["tip_x"] is not None:
                 dt = r[n]["time"] - r[n - 1]["time"]
                 if dt > 0:
-                    direction = next(c[2] for c in CHARGES if c[0] == name)
                     r[n]["tip_speed_dxdt"] = direction * (r[n]["tip_x"] - r[n - 1]["tip_x"]) / dt
+        first = {e: next((x["time"] for x in r if x["events"].get(e)), None) for e in EVENTS}
+        entry = next((x for x in r if x["events"].get("rock")), None)
+        last = r[-1]
+        speeds = [x["tip_speed_cell"] for x in r if x["tip_speed_cell"] is not None]
+        pierced = next((x for x in r if x["events"].get("carrier_through")), None)
+        summary = {
+            "first_dump": first,
+            # the openings when the jet first shows through: at the end the carrier may have
+            # burst around the charge and the casing's hole grown with the crater
+            "carrier_hole_when_pierced": pierced["carrier_hole"] if pierced else None,
+            "casing_entrance_when_pierced": entry["casing_entrance"][0] if entry else None,
+            "casing_exit_when_pierced": entry["casing_exit"][0] if entry else None,
+            "max_tip_speed_cell": max(speeds) if speeds else None,
+            "max_jet_mass": max(x["jet_mass"] for x in r),
+            "max_jet_momentum": max(x["jet_momentum"] for x in r),
+            "final": {k: last[k] for k in ("time", "tip_x", "crater_depth", "tip_depth",
+                                           "casing_entrance", "casing_exit", "carrier_hole",
+                                           "copper_beyond")},
+            "birkhoff": None,
+        }
+        if entry is not None:
+            summary["birkhoff"] = {
+                "at_time": entry["time"], "jet_length": entry["jet_length"],
+                "depth_quartz": shaped_charge.birkhoff_depth(entry["jet_length"], "quartz"),
+                "crater_depth_final": last["crater_depth"]}
+        result["charges"][name] = {"summary": summary, "history": r}
 
-    result = {
-        "run": os.path.abspath(a.run),
-        "zone_cm": zone,
-        "probe_radius_cm": a.radius if a.radius is not None else zone,
-        "criterion": "copper fraction > 0.5 in a cell centred within the probe radius of the "
-                     "charge axis (y = 0) beyond the wall's outer surface; for the rock also "
-                     "less than half a cell of steel ahead of that cell along its row",
-        "walls_x": {"+x": list(wall[+1.0]), "-x": list(wall[-1.0])},
-        "last_time": runs[-1][0],
-        "charges": {name: {"first_dump_beyond": first_cross[name], "history": rows[name]}
-                    for name, *_ in CHARGES},
-    }
-
-    def fmt(v, f="{:.3f}"):
-        return "—" if v is None else f.format(v + 0.0)
-
-    lines = [f"# Perforator check: {a.run}", "",
-             f"zone {zone:g} cm, probe radius {result['probe_radius_cm']:g} cm, "
-             f"dumps to t = {runs[-1][0]:g} us. Criterion: {result['criterion']}.", "",
-             "| charge | carrier perforated (us) | casing interior reached (us) | "
-             "casing perforated, in rock (us) |", "|---|---|---|---|"]
-    for name, *_ in CHARGES:
-        c = first_cross[name]
-        lines.append(f"| {name} | {fmt(c['carrier'], '{:g}')} | {fmt(c['casing_inner'], '{:g}')}"
-                     f" | {fmt(c['rock'], '{:g}')} |")
-    lines += ["", "Times are the first dump showing it (the crossing happened since the dump "
-              "before).", "",
-              "| t (us) | charge | tip x (cm) | tip beyond mouth (cm) | tip speed dx/dt (cm/us) | "
-              "tip cell u (cm/us) | steel ahead (cells) |", "|---|---|---|---|---|---|---|"]
+    lines = [f"# Perforator: {a.run}", "",
+             f"zone {zone:g} cm, dumps to t = {runs[-1][0]:g} us, jet speed cut {a.cut:g} cm/us. "
+             "Masses are the whole charge's (twice the half mesh). Times are the first dump "
+             "showing the event.", "",
+             "| charge | carrier reached | through carrier | casing reached | in rock | "
+             "max tip speed (cm/us) | max jet mass (g) | max jet momentum (g cm/us) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for name, *_ in charges:
+        s = result["charges"][name]["summary"]
+        f = s["first_dump"]
+        lines.append(f"| {name} | " + " | ".join(fmt(f[e], "{:g}") for e in EVENTS) +
+                     f" | {fmt(s['max_tip_speed_cell'])} | {fmt(s['max_jet_mass'], '{:.4f}')} "
+                     f"| {fmt(s['max_jet_momentum'], '{:.4f}')} |")
+    lines += ["", "Openings when first pierced (cm, equivalent diameter): " + "; ".join(
+        f"{name}: carrier {fmt(result['charges'][name]['summary']['carrier_hole_when_pierced'])}"
+        f", casing entrance "
+        f"{fmt(result['charges'][name]['summary']['casing_entrance_when_pierced'])}, exit "
+        f"{fmt(result['charges'][name]['summary']['casing_exit_when_pierced'])}"
+        for name, *_ in charges) + "."]
+    lines += ["", f"At t = {runs[-1][0]:g} us (a wall's opening now includes its burst around the "
+              "charge and the crater's growth; copper \"beyond\" a wall is past its original "
+              "surface, bulge or not):", "",
+              "| charge | carrier hole (cm) | casing entrance (cm) | casing exit (cm) | crater "
+              "depth (cm) | tip depth (cm) | Cu beyond carrier / casing in / casing out (g) |",
+              "|---|---|---|---|---|---|---|"]
+    for name, *_ in charges:
+        fl = result["charges"][name]["summary"]["final"]
+        cb = fl["copper_beyond"]
+        lines.append(f"| {name} | {fmt(fl['carrier_hole'])} | "
+                     f"{fmt(fl['casing_entrance'][0] if fl['casing_entrance'] else None)} | "
+                     f"{fmt(fl['casing_exit'][0] if fl['casing_exit'] else None)} | "
+                     f"{fmt(fl['crater_depth'])} | {fmt(fl['tip_depth'])} | "
+                     f"{cb['carrier_outer']:.4f} / {cb['casing_inner']:.4f} / "
+                     f"{cb['casing_outer']:.4f} |")
+    lines += ["", "Against theory (tools/shaped_charge.py): PER tip speed "
+              f"{theory['tip_speed']:.3f} cm/us (steady BMPT {theory['tip_speed_steady_bmpt']:.3f}), "
+              f"jet mass above the cut {theory['jet_mass_above_cut_g']:.3f} g, momentum "
+              f"{theory['jet_momentum_above_cut']:.4f} g cm/us."]
+    for name, *_ in charges:
+        b = result["charges"][name]["summary"]["birkhoff"]
+        if b:
+            lines.append(f"- {name}: fast jet {b['jet_length']:.2f} cm long on entering the rock "
+                         f"(t = {b['at_time']:g} us): Birkhoff depth {b['depth_quartz']:.2f} cm; "
+                         f"crater at the end {fmt(b['crater_depth_final'], '{:.2f}')} cm.")
+    if result["mass_ledger"]:
+        lines += ["", "| material | mass at start (g) | at end (g) | lost through the "
+                  "boundaries |", "|---|---|---|---|"]
+        for m, v in result["mass_ledger"].items():
+            lines.append(f"| {m} | {v['start']:.6g} | {v['end']:.6g} | "
+                         f"{100 * v['lost_relative']:.3f} % |")
+    lines += ["", "| t (us) | charge | tip x (cm) | tip speed dx/dt | tip cell u | steel ahead "
+              "(cells) | jet mass (g) | jet length (cm) |", "|---|---|---|---|---|---|---|---|"]
     for n in range(len(runs)):
-        for name, *_ in CHARGES:
+        for name, *_ in charges:
             r = rows[name][n]
             lines.append(f"| {r['time']:g} | {name} | {fmt(r['tip_x'])} | "
-                         f"{fmt(r['beyond_mouth'])} | {fmt(r['tip_speed_dxdt'])} | "
-                         f"{fmt(r['tip_speed_cell'])} | {fmt(r['steel_cap_cells'], '{:.2f}')} |")
+                         f"{fmt(r['tip_speed_dxdt'])} | {fmt(r['tip_speed_cell'])} | "
+                         f"{fmt(r['steel_ahead'], '{:.2f}')} | {r['jet_mass']:.4f} | "
+                         f"{r['jet_length']:.2f} |")
     text = "\n".join(lines) + "\n"
     print(text)
     if a.output:
-        os.makedirs(os.path.dirname(a.output) or ".", exist_ok=True)
-        with open(a.output + ".json", "w") as f:
-            json.dump(result, f, indent=1)
-        with open(a.output + ".md", "w") as f:
-            f.write(text)
-        print(a.output + ".json\n" + a.output + ".md")
+        print("\n".join(dumps.write_report(a.output, result, text)))
 
 
 if __name__ == "__main__":

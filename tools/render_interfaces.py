@@ -32,7 +32,7 @@ TOOL = "render_interfaces"
 # Fixed colours for the usual material names (so every picture of a scene matches); others
 # take the tab10 cycle.
 COLOURS = {"copper": "#c8702a", "steel": "#7b8794", "quartz": "#d9c79a", "water": "#9cc8ea",
-           "air": "#ffffff", "comp_b": "#d6404e", "he": "#d6404e", "products": "#d6404e"}
+           "air": "#ffffff", "well_fluid": "#e4eef6", "comp_b": "#d6404e", "he": "#d6404e", "products": "#d6404e"}
 
 
 def colours_for(materials):

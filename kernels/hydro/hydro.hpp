@@ -289,6 +289,19 @@ class Hydro {
 
   // Kernel launchers (public: nvcc requires the function enclosing an extended
   // __host__ __device__ lambda to be public).
+  // The boundary mass ledger (ledger.cpp; output.mass_ledger): off until switched on, before
+  // the first cycle. mass_ledger(): per material (one entry for a single-material scene), the
+  // mass out through the faces x lo, x hi, y lo, y hi, z lo, z hi (6 m + 2 d + side) since the
+  // run began, summed over the ranks (collective); empty when off. restore_mass_ledger(): a
+  // restart's, from the checkpoint.
+  void set_mass_ledger(bool on);
+  bool mass_ledger_on() const { return !ledger_.empty(); }
+  std::vector<double> mass_ledger() const;
+  void restore_mass_ledger(const std::vector<double>& global);
+  struct NoLayout {};  // (a single-material scene's ledger_faces)
+  template <class Dev>
+  void ledger_faces(const Dev& dev, int d);
+  void ledger_sweep(int d);
   void exchange_cells();
   // Noh's heat flux over a step dt (conduction.cpp), before the Lagrangian step: the number of
   // explicit sub-steps it took, 0 where it did nothing (off, a multi-material scene, no
@@ -367,7 +380,8 @@ class Hydro {
   // corrector the first step's, a step's KE fix the next one's), if any.
   bool volumes_ready_ = false;
   RemapStep volumes_for_{};
-  long ke_redone_ = 0;  // sweeps whose dual faces were redone (ke_redo)
+  long ke_redone_ = 0;          // sweeps whose dual faces were redone (ke_redo)
+  std::vector<double> ledger_;  // this rank's boundary mass ledger (mass_ledger())
   // gamma - 1 of the scene's ideal gas where the free-expansion rule acts (else 0)
   Real expansion_gm1_ = 0;
   bool expanded_ = false;  // whether the current sweep's faces did free-expansion work

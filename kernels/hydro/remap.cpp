@@ -264,6 +264,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
             lo, hi, vf, pre, rho, e, mf, ef, ord, s_.expansion_work, expansion_gm1_,
             opt_.free_expansion, reflective_face(d, 0), reflective_face(d, 1), s_.expansion_any);
       });
+    ledger_sweep(d);
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
     HaloField efh{ef, Centering::Cell, {1, 1, 1}};
     mfh.face_axis = efh.face_axis = d;

@@ -36,7 +36,8 @@ regions:
   - {material: gas, shape: sphere, center: [0.5, 0.5, 0.5], radius: 0.3, density: 1,
      pressure: 1, radial_velocity: {speed: -1, center: [0, 0, 0]}}
 output: {dir: out, interval: 0.1, write: true, log_every: 10,
-         checkpoint_every: {cycles: 0, seconds: 0}, checkpoint_keep: 2}
+         checkpoint_every: {cycles: 0, seconds: 0}, checkpoint_keep: 2,
+         mass_ledger: false}
 )",
     R"(scene: multi
 mesh: {zone: 0.25, lo: [0, 0, 0], hi: [1, 1, 1]}
@@ -329,6 +330,7 @@ const std::map<std::string, std::string>& key_notes() {
       {"output.checkpoint_every.cycles", "cycles between checkpoints"},
       {"output.checkpoint_every.seconds", "wall seconds between checkpoints"},
       {"output.checkpoint_keep", "newest checkpoints kept"},
+      {"output.mass_ledger", "each material's mass out through each boundary face (summary.json)"},
   };
   return n;
 }

@@ -385,11 +385,13 @@ Scene read_scene(const Deck& deck) {
   s.output.basename = s.name;
   if (root.has("output")) {
     const DeckNode o = root.child("output");
-    o.expect_keys({"dir", "interval", "write", "log_every", "checkpoint_every", "checkpoint_keep"});
+    o.expect_keys({"dir", "interval", "write", "log_every", "checkpoint_every", "checkpoint_keep",
+                   "mass_ledger"});
     s.output.dir = o.get_string("dir", s.output.dir);
     s.output.interval = o.get_real("interval", 0, kHuge, 0);
     s.output.write = o.get_bool("write", true);
     s.output.log_every = o.get_int("log_every", 1, 1000000000L, s.output.log_every);
+    s.output.mass_ledger = o.get_bool("mass_ledger", false);
     if (o.has("checkpoint_every")) {
       const DeckNode c = o.child("checkpoint_every");
       c.expect_keys({"cycles", "seconds"});

@@ -118,6 +118,9 @@ struct OutputSpec {
   long checkpoint_cycles = 0;
   double checkpoint_seconds = 0;
   int checkpoint_keep = 2;
+  // The boundary mass ledger (output.mass_ledger): each material's mass out through each face
+  // of the mesh, in summary.json and the run log.
+  bool mass_ledger = false;
 };
 
 struct Scene {

@@ -136,6 +136,10 @@ std::string Simulation::checkpoint_meta() const {
                       {"dumps", dumps},
                       {"files", files_},
                       {"restart_history", restart_history_}};
+  if (hydro_->mass_ledger_on()) {
+    j["mass_ledger"] = hydro_->mass_ledger();
+    j["mass_ledger_from"] = mass_ledger_from_;
+  }
   return j.dump();
 }
 
@@ -322,6 +326,15 @@ void Simulation::restart(const std::string& path) {
     dt_old_ = Real(meta.at("dt_old").get<double>());
     next_dump_ = meta.at("next_dump").get<double>();
     start_ = totals_from(meta.at("start"));
+    // the ledger so far (a checkpoint written without it: this run's ledger counts from here)
+    if (hydro_->mass_ledger_on()) {
+      if (meta.contains("mass_ledger")) {
+        hydro_->restore_mass_ledger(meta.at("mass_ledger").get<std::vector<double>>());
+        mass_ledger_from_ = meta.value("mass_ledger_from", 0L);
+      } else {
+        mass_ledger_from_ = cycle_;
+      }
+    }
     files_ = meta.at("files").get<std::vector<std::string>>();
     dumps_.clear();
     for (const auto& d : meta.at("dumps"))

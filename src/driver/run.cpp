@@ -242,7 +242,8 @@ int run(const CommandLine& cl) {
     else
       sim.restart(restart_path);
     log_line("  set-up: " + sim.setup_text());
-    log_line("  output: " + settings.output_dir);
+    log_line("  output: " + settings.output_dir +
+             (scene.output.mass_ledger ? " (with the boundary mass ledger)" : ""));
     signals::install();
     const RunResult r = sim.run();
     std::ostringstream os;
@@ -280,6 +281,7 @@ int run(const CommandLine& cl) {
          << " the KE fix could not charge (its cells too cold to pay the kinetic energy the remap "
             "made)";
     log_line(os.str());
+    if (!r.mass_ledger.empty()) log_line(ledger_line(ledger_entries(scene, r)));
     if (!r.checkpoints.empty() && r.ending != Ending::EndTime)
       log_line("checkpoint " + r.checkpoints.back() + "; continue with --restart latest");
     if (!settings.output_dir.empty()) log_line("wrote " + settings.output_dir + "/summary.json");

@@ -51,6 +51,7 @@ Simulation::Simulation(const Scene& scene, MPI_Comm comm, RunSettings settings)
   hydro_ =
       std::make_unique<hydro::Hydro>(*mesh_, *halo_, hydro_options(scene_), material_eoses(scene_));
   add_modules(scene_, *mesh_, *hydro_);  // (the modules the scene needs)
+  hydro_->set_mass_ledger(scene_.output.mass_ledger);
   phase("allocation", t0);
 }
 
@@ -253,6 +254,8 @@ RunResult Simulation::run() {
   r.time = t_;
   r.end = hydro_->totals();
   r.ke_redone = hydro_->ke_redone();
+  r.mass_ledger = hydro_->mass_ledger();
+  r.mass_ledger_from = mass_ledger_from_;
   r.health = h;
   const double tot[] = {r.end.mass,        r.end.internal,    r.end.kinetic,
                         r.end.momentum[0], r.end.momentum[1], r.end.momentum[2]};
@@ -288,6 +291,8 @@ void Simulation::output_failed(RunResult& r, const std::string& what) {
   r.time = t_;
   r.end = hydro_->totals();
   r.ke_redone = hydro_->ke_redone();
+  r.mass_ledger = hydro_->mass_ledger();
+  r.mass_ledger_from = mass_ledger_from_;
   r.files = files_;
   r.output_error = what;
   std::string note = "; nothing else was written";

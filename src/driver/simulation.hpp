@@ -1,5 +1,6 @@
 // One run of a scene: the mesh, the physics modules the scene needs, the time loop, output.
 #pragma once
+#include <array>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -47,6 +48,10 @@ struct RunResult {
   // sweeps in which the KE fix redid dual faces with donor values (hydro::ke_redo): cold gas
   // draining towards vacuum, where the remap would make kinetic energy its cells cannot pay
   long ke_redone = 0;
+  // output.mass_ledger: hydro::Hydro::mass_ledger() at the end (empty when off), and the
+  // cycle it counts from (0, or a restart's cycle where the checkpoint had none)
+  std::vector<double> mass_ledger;
+  long mass_ledger_from = 0;
   hydro::Health health;
   std::vector<std::string> files;
   std::vector<std::string> checkpoints;  // written by this run
@@ -58,6 +63,18 @@ struct RunResult {
   long first_cycle = 0;      // cycle this process started at (restart: > 0)
   std::string output_error;  // a dump or checkpoint that could not be written
 };
+
+// The boundary mass ledger of a run (RunResult::mass_ledger), one entry per material (the
+// scene's material names; one entry, the scene's mass, in a single-material scene): the mass
+// out through each face of the mesh and in all, and that against the material's mass at the
+// start. ledger_line(): the run log's line, each material's share lost and its largest face.
+struct LedgerEntry {
+  std::string name;
+  std::array<double, 6> faces{};  // x lo, x hi, y lo, y hi, z lo, z hi
+  double out = 0, start = 0;
+};
+std::vector<LedgerEntry> ledger_entries(const Scene& scene, const RunResult& r);
+std::string ledger_line(const std::vector<LedgerEntry>& entries);
 
 class Simulation {
  public:
@@ -122,6 +139,7 @@ class Simulation {
   long cycle_ = 0;
   Real dt_old_ = 0;
   hydro::Totals start_;
+  long mass_ledger_from_ = 0;  // RunResult::mass_ledger_from
   std::vector<std::pair<std::string, double>> setup_;
   std::vector<std::string> restart_changes_, restart_history_;
   bool restarted_ = false;

@@ -1,6 +1,8 @@
 // How a run ended, and summary.json: the run's totals, its ending, its files, as JSON.
 #include <cmath>
+#include <iomanip>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,40 @@ void Simulation::write_summary(const RunResult& r) const {
   const std::string path = settings_.output_dir + "/summary.json";
   const std::string text = summary_json(r);
   h5::on_root(mesh_->comm(), [&] { write_text_atomically(path, text); });
+}
+
+std::vector<LedgerEntry> ledger_entries(const Scene& scene, const RunResult& r) {
+  std::vector<LedgerEntry> out;
+  const std::size_t n = r.mass_ledger.size() / 6;
+  for (std::size_t m = 0; m < n; ++m) {
+    LedgerEntry e;
+    e.name = n > 1 || scene.materials.size() == 1 ? scene.materials[m].name : "mass";
+    for (int f = 0; f < 6; ++f) {
+      e.faces[f] = r.mass_ledger[6 * m + f];
+      e.out += e.faces[f];
+    }
+    e.start = n > 1 ? r.start.material_mass[m] : r.start.mass;
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::string ledger_line(const std::vector<LedgerEntry>& entries) {
+  static const char* face[] = {"x lo", "x hi", "y lo", "y hi", "z lo", "z hi"};
+  std::ostringstream os;
+  os << "mass out through the boundaries (share of the start's):";
+  for (const auto& e : entries) {
+    int big = 0;
+    for (int f = 1; f < 6; ++f)
+      if (std::abs(e.faces[f]) > std::abs(e.faces[big])) big = f;
+    os << " " << e.name << " " << std::setprecision(3)
+       << (e.start != 0 ? 100 * e.out / e.start : 0.0) << " %";
+    if (e.out != 0) os << " (most at " << face[big] << ")";
+    os << ";";
+  }
+  std::string s = os.str();
+  s.back() = '.';
+  return s;
 }
 
 std::string Simulation::summary_json(const RunResult& r) const {
@@ -107,6 +143,19 @@ std::string Simulation::summary_json(const RunResult& r) const {
   js["ke_fix_redone_sweeps"] = r.ke_redone;
   js["ke_fix_unpaid_relative"] =
       num(r.start.total() != 0 ? du / r.start.total() : 0, "ke_fix_unpaid_relative");
+  if (!r.mass_ledger.empty()) {
+    // output.mass_ledger: per material, the mass out through each face (negative: in)
+    static const char* face[] = {"x_lo", "x_hi", "y_lo", "y_hi", "z_lo", "z_hi"};
+    nlohmann::ordered_json led = nlohmann::ordered_json::object();
+    for (const auto& e : ledger_entries(scene_, r)) {
+      nlohmann::ordered_json o;
+      for (int f = 0; f < 6; ++f) o[face[f]] = num(e.faces[f], "mass_ledger." + e.name);
+      o["out"] = num(e.out, "mass_ledger." + e.name + ".out");
+      o["out_relative"] = num(e.start != 0 ? e.out / e.start : 0, "mass_ledger." + e.name);
+      led[e.name] = o;
+    }
+    js["mass_ledger"] = {{"from_cycle", r.mass_ledger_from}, {"materials", led}};
+  }
   js["files"] = r.files;
   js["checkpoints"] = r.checkpoints;
   if (!r.restarted_from.empty()) {
