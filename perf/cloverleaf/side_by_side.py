@@ -4,7 +4,7 @@
     perf/cloverleaf/side_by_side.py --clover /path/to/clover_leaf [--rounds 5]
         [--minipagosa build/minipagosa] [--sedov-l1 build/perf/sedov_l1]
         [--configs 1x2,2x1] [--sedov-meshes 24,32,48,64] [--skip-bm] [--skip-sedov]
-        [--bind none|spread] [--out perf/results/cloverleaf]
+        [--bind none|spread] [--baseline OLD_MINIPAGOSA] [--out perf/results/cloverleaf]
 
 CloverLeaf3D_ref (github.com/UK-MAC/CloverLeaf3D_ref, Fortran + OpenMP/MPI) is fetched and
 built outside this repository (make COMPILER=GNU, Debian's gfortran and Open MPI); nothing of it
@@ -183,15 +183,15 @@ def run_clover(a, deck_text, ranks, threads, tag, keep=False):
     return r, wd
 
 
-def run_mp(a, deck, sets, ranks, threads, tag, keep=False):
+def run_mp(a, deck, sets, ranks, threads, tag, keep=False, exe=None, code="minipagosa"):
     wd = tempfile.mkdtemp(prefix=f"mp_{tag}_", dir=a.scratch)
-    argv = [a.minipagosa, deck, "-o", os.path.join(wd, "out")]
+    argv = [exe or a.minipagosa, deck, "-o", os.path.join(wd, "out")]
     for s in sets:
         argv += ["--set", s]
     log = os.path.join(wd, "stdout.log")
     wall, load = launch(argv, ranks, threads, a.bind, wd, log)
     r = mp_parse(log, os.path.join(wd, "out"))
-    r.update(code="minipagosa", wall_seconds=wall, load1_before=load, load1_after=loadavg())
+    r.update(code=code, wall_seconds=wall, load1_before=load, load1_after=loadavg())
     if not keep:
         shutil.rmtree(wd)
     return r, wd
@@ -214,14 +214,16 @@ def bm_short(a, cfg):
     runs = []
     for rnd in range(a.rounds):
         for ci, (ranks, threads) in enumerate(cfg):
-            order = ["cloverleaf", "minipagosa"]
-            if (rnd + ci) % 2:
-                order.reverse()
+            order = ["cloverleaf", "minipagosa"] + (["minipagosa_baseline"] if a.baseline else [])
+            shift = (rnd + ci) % len(order)  # each code first in turn
+            order = order[shift:] + order[:shift]
             for code in order:
                 if code == "cloverleaf":
                     r, _ = run_clover(a, clover_text, ranks, threads, "bm")
-                else:
+                elif code == "minipagosa":
                     r, _ = run_mp(a, deck, sets, ranks, threads, "bm")
+                else:
+                    r, _ = run_mp(a, deck, sets, ranks, threads, "bm", exe=a.baseline, code=code)
                 r.update(round=rnd, ranks=ranks, threads=threads, cells=cells**3)
                 r["cell_cycles_per_second"] = cells**3 * r["cycles"] / r["wall_seconds"]
                 r["own_cell_cycles_per_second"] = cells**3 * r["cycles"] / r["own_seconds"]
@@ -317,8 +319,9 @@ def report(a, cfg, bm, sed, errs):
                   " [min, max] |\n|---|---|---|---|---|---|---|---|---|")
         ratios = []
         for ranks, threads in cfg:
+            codes = ("cloverleaf", "minipagosa") + (("minipagosa_baseline",) if a.baseline else ())
             sel = {c: [r for r in bm if r["ranks"] == ranks and r["threads"] == threads and r["code"] == c]
-                   for c in ("cloverleaf", "minipagosa")}
+                   for c in codes}
             for c, rs in sel.items():
                 w = [r["wall_seconds"] for r in rs]
                 loads = [r["load1_before"] for r in rs]
@@ -338,8 +341,17 @@ def report(a, cfg, bm, sed, errs):
                     "wall": m["cell_cycles_per_second"] / c["cell_cycles_per_second"],
                     "own": m["own_cell_cycles_per_second"] / c["own_cell_cycles_per_second"],
                     "time_to_solution": (m["time"] / m["wall_seconds"]) / (c["time"] / c["wall_seconds"])})
+                if a.baseline:
+                    b = [r for r in sel["minipagosa_baseline"] if r["round"] == rnd][0]
+                    per_round[-1]["baseline_wall"] = b["cell_cycles_per_second"] / c["cell_cycles_per_second"]
+                    per_round[-1]["new_over_baseline_wall"] = m["cell_cycles_per_second"] / b["cell_cycles_per_second"]
+                    per_round[-1]["new_over_baseline_own"] = (m["own_cell_cycles_per_second"]
+                                                              / b["own_cell_cycles_per_second"])
             s = {"ranks": ranks, "threads": threads}
-            for k in ("wall", "own", "time_to_solution"):
+            keys = ["wall", "own", "time_to_solution"]
+            if a.baseline:
+                keys += ["baseline_wall", "new_over_baseline_wall", "new_over_baseline_own"]
+            for k in keys:
                 xs = [p[k] for p in per_round]
                 s[k] = {"median": med(xs), "min": min(xs), "max": max(xs), "rounds": xs}
             out["bm_short"]["summary"].append(s)
@@ -349,6 +361,14 @@ def report(a, cfg, bm, sed, errs):
         for s in ratios:
             f = lambda k: f"**{s[k]['median']:.2f}** [{s[k]['min']:.2f}, {s[k]['max']:.2f}]"
             md.append(f"| {s['ranks']}x{s['threads']} | {f('wall')} | {f('own')} | {f('time_to_solution')} |")
+        if a.baseline:
+            md.append(f"\nBaseline build ({a.baseline}) in the same rounds: its ratio to CloverLeaf, and"
+                      " the new build's speed over it (cell-cycles/s, per round).\n\n| ranks x threads |"
+                      " baseline / CloverLeaf, wall | new / baseline, wall | new / baseline, own |\n|---|---|---|---|")
+            for s in ratios:
+                f = lambda k: f"**{s[k]['median']:.2f}** [{s[k]['min']:.2f}, {s[k]['max']:.2f}]"
+                md.append(f"| {s['ranks']}x{s['threads']} | {f('baseline_wall')} | {f('new_over_baseline_wall')} |"
+                          f" {f('new_over_baseline_own')} |")
         m0 = [r["mass0"] for r in bm if r["code"] == "minipagosa"][:1]
         c0 = [r["mass0"] for r in bm if r["code"] == "cloverleaf"][:1]
         if m0 and c0:
@@ -404,6 +424,7 @@ def main():
     p.add_argument("--clover", required=True, help="CloverLeaf3D_ref's clover_leaf binary")
     p.add_argument("--clover-deck", help="its clover_bm_short.in (default: beside the binary)")
     p.add_argument("--minipagosa", default=os.path.join(REPO, "build/minipagosa"))
+    p.add_argument("--baseline", help="another minipagosa build, run in the same bm_short rounds")
     p.add_argument("--sedov-l1", default=None, help="sedov_l1 (default: beside minipagosa, perf/)")
     p.add_argument("--rounds", type=int, default=5, help="interleaved rounds of bm_short")
     p.add_argument("--sedov-rounds", type=int, default=3, help="timed rounds per Sedov mesh")
@@ -421,6 +442,8 @@ def main():
     a = p.parse_args()
     a.clover = os.path.abspath(a.clover)
     a.minipagosa = os.path.abspath(a.minipagosa)
+    if a.baseline:
+        a.baseline = os.path.abspath(a.baseline)
     if a.clover_deck is None:
         a.clover_deck = os.path.join(os.path.dirname(a.clover), "clover_bm_short.in")
     if a.sedov_l1 is None:
