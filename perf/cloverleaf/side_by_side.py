@@ -3,7 +3,7 @@
 
     perf/cloverleaf/side_by_side.py --clover /path/to/clover_leaf [--rounds 5]
         [--minipagosa build/minipagosa] [--sedov-l1 build/perf/sedov_l1]
-        [--configs 1x2,2x1] [--sedov-meshes 24,32,48,64] [--skip-bm] [--skip-sedov]
+        [--configs 1x2,2x1] [--sedov-meshes 16,24,32,48,64] [--skip-bm] [--skip-sedov]
         [--bind none|spread] [--baseline OLD_MINIPAGOSA] [--out perf/results/cloverleaf]
 
 CloverLeaf3D_ref (github.com/UK-MAC/CloverLeaf3D_ref, Fortran + OpenMP/MPI) is fetched and
@@ -288,18 +288,22 @@ def sedov(a, cfg):
 
 
 def interp_time(points, err):
-    """Wall time at error err on a code's (error, time) points, log-log between neighbours."""
+    """(wall time at error err on a code's (error, time) points, log-log between neighbours,
+    "="), or where err is above all its errors (its coarsest mesh is more accurate already) the
+    least time of a point at or below err, "<=" (an upper bound); (None, "") below them all."""
     pts = sorted(points)
+    if pts and err > pts[-1][0]:
+        return min(t for e, t in pts if e <= err), "<="
     for (e0, t0), (e1, t1) in zip(pts, pts[1:]):
         if e0 <= err <= e1:
             if e1 == e0:
                 return t0
             w = math.log(err / e0) / math.log(e1 / e0)
-            return math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0)))
-    return None
+            return math.exp(math.log(t0) + w * (math.log(t1) - math.log(t0))), "="
+    return None, ""
 
 
-def report(a, cfg, bm, sed, errs):
+def report(a, cfg, scfg, bm, sed, errs):
     md = [f"# minipagosa beside CloverLeaf3D_ref\n",
           f"Written by `perf/cloverleaf/side_by_side.py` ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}),"
           f" {platform.node()}, {os.cpu_count()} cores; {a.rounds} interleaved rounds (bm_short),"
@@ -396,19 +400,21 @@ def report(a, cfg, bm, sed, errs):
                       f" {e['time']:.4g} | {e['internal_energy0']:.6g} | {e['l1']:.5g} | {med(w):.2f}"
                       f" [{min(w):.2f}, {max(w):.2f}] | {med([r['load1_before'] for r in rs]):.2f} |")
         md.append("\nTime to CloverLeaf's error at each of its meshes: minipagosa's wall time at that"
-                  " error, log-log between its own meshes (blank: outside minipagosa's range).\n\n"
+                  " error, log-log between its own meshes; '<=' where minipagosa's coarsest mesh is"
+                  " already more accurate (its time then bounds the time to that error from above);"
+                  " blank: below minipagosa's errors.\n\n"
                   "| ranks x threads | CloverLeaf mesh | L1 | CloverLeaf s | minipagosa s | ratio |\n|---|---|---|---|---|---|")
-        for ranks, threads in cfg:
+        for ranks, threads in scfg:
             cl = pts.get(("cloverleaf", ranks, threads), [])
             mp = pts.get(("minipagosa", ranks, threads), [])
             for e in [x for x in errs if x["code"] == "cloverleaf" and x["ranks"] == ranks and x["threads"] == threads]:
-                t = interp_time(mp, e["l1"])
+                t, how = interp_time(mp, e["l1"])
                 row = {"ranks": ranks, "threads": threads, "clover_cells_per_axis": e["cells_per_axis"],
                        "l1": e["l1"], "clover_seconds": e["wall_median"], "minipagosa_seconds": t,
-                       "ratio": t / e["wall_median"] if t else None}
+                       "ratio": t / e["wall_median"] if t else None, "ratio_is": how}
                 out["sedov"]["summary"].append(row)
-                ts = "" if t is None else f"{t:.2f}"
-                rs = "" if t is None else f"**{row['ratio']:.2f}**"
+                ts = "" if t is None else f"{'<= ' if how == '<=' else ''}{t:.2f}"
+                rs = "" if t is None else f"**{'<= ' if how == '<=' else ''}{row['ratio']:.2f}**"
                 md.append(f"| {ranks}x{threads} | {e['cells_per_axis']}^3 | {e['l1']:.4g} |"
                           f" {e['wall_median']:.2f} | {ts} | {rs} |")
     os.makedirs(os.path.dirname(os.path.abspath(a.out)), exist_ok=True)
@@ -431,7 +437,8 @@ def main():
     p.add_argument("--configs", default="1x2,2x1", help="ranks x threads, comma separated")
     p.add_argument("--sedov-configs", default="1x2", help="ranks x threads of the Sedov runs")
     p.add_argument("--cells", type=int, default=96, help="bm_short cells per axis")
-    p.add_argument("--sedov-meshes", default="24,32,48,64")
+    p.add_argument("--sedov-meshes", default="16,24,32,48,64",
+                   help="octant meshes (>= 16: the deposit sphere must hold a cell centre)")
     p.add_argument("--mp-set", action="append", default=[], help="extra --set for minipagosa's Sedov")
     p.add_argument("--bind", choices=["none", "spread"], default="none",
                    help="OpenMP threads unbound, or OMP_PROC_BIND=spread OMP_PLACES=threads")
@@ -459,7 +466,7 @@ def main():
     try:
         bm = [] if a.skip_bm else bm_short(a, cfg)
         sed, errs = ([], []) if a.skip_sedov else sedov(a, scfg)
-        report(a, cfg, bm, sed, errs)
+        report(a, cfg, scfg, bm, sed, errs)
     finally:
         shutil.rmtree(a.scratch, ignore_errors=True)
 
