@@ -306,8 +306,9 @@ def interp_time(points, err):
 def report(a, cfg, scfg, bm, sed, errs):
     md = [f"# minipagosa beside CloverLeaf3D_ref\n",
           f"Written by `perf/cloverleaf/side_by_side.py` ({time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}),"
-          f" {platform.node()}, {os.cpu_count()} cores; {a.rounds} interleaved rounds (bm_short),"
-          f" {a.sedov_rounds} (Sedov); OpenMP binding: {a.bind}. Load: the 1-minute load average"
+          f" {platform.node()}, {os.cpu_count()} cores;"
+          f"{f' {a.rounds} interleaved rounds (bm_short);' if bm else ''}"
+          f"{f' {a.sedov_rounds} (Sedov);' if sed else ''} OpenMP binding: {a.bind}. Load: the 1-minute load average"
           f" before each run (a quiet 2-core machine reads below 1 with one 2-thread run going). {a.note}\n"]
     out = {"machine": {"host": platform.node(), "cores": os.cpu_count(), "bind": a.bind,
                        "note": a.note}, "clover_binary": a.clover, "minipagosa": a.minipagosa,
