@@ -3,10 +3,15 @@
 // bandwidth of the same process. Writes JSON (machine-readable) and prints a markdown table,
 // then a per-kernel breakdown from a separate block of cycles with a Kokkos::fence before and
 // after every kernel (perf/kernel_timer.hpp; the plain timing has no extra fences).
+// --deck runs any single-material deck instead: on its own mesh (unless --sizes is given: cubes
+// of those cells over the deck's box), from its initial state; with --warmup 0 and --cycles at
+// the deck's time.max_cycles it times the same cycles as `minipagosa deck` (perf/cloverleaf/
+// bm_short.yaml: docs/perf.md, "Any deck").
 // Bandwidths come from the counted traffic model of perf/bytes_model.hpp (per kernel: fields
 // read and written over its range); kernel launches per cycle are counted through the Kokkos
 // Tools callbacks of the breakdown block (perf/kernel_timer.hpp).
-//   bench_hydro [--sizes 32,64] [--cycles 40] [--no-breakdown] [--json perf/results/hydro.json]
+//   bench_hydro [--sizes 32,64] [--cycles 40] [--warmup 5] [--deck D] [--no-breakdown]
+//               [--json perf/results/hydro.json]
 #include <mpi.h>
 
 #include <CLI/CLI.hpp>
@@ -32,16 +37,19 @@ int main(int argc, char** argv) {
   int rc = 0;
   {
     CLI::App app{"minipagosa single-material hydro benchmark"};
-    std::vector<int> sizes{32, 64};
+    std::vector<int> sizes;
     int cycles = 40, warmup = 5;
-    std::string deck = mp::test::source_dir() + "/configs/sedov.yaml";
+    const std::string sedov = mp::test::source_dir() + "/configs/sedov.yaml";
+    std::string deck = sedov;
     std::string json;
     bool no_breakdown = false;
     app.add_flag("--no-breakdown", no_breakdown, "skip the fenced per-kernel breakdown block");
-    app.add_option("--sizes", sizes, "cells per axis of each run")->delimiter(',');
+    app.add_option("--sizes", sizes,
+                   "cells per axis of each run (default 32,64; a --deck: its mesh)")
+        ->delimiter(',');
     app.add_option("--cycles", cycles, "timed cycles per size");
     app.add_option("--warmup", warmup, "untimed cycles first");
-    app.add_option("--deck", deck, "scene deck");
+    app.add_option("--deck", deck, "a single-material scene deck (default: configs/sedov.yaml)");
     app.add_option("--json", json, "write results as JSON here");
     try {
       app.parse(argc, argv);
@@ -51,17 +59,21 @@ int main(int argc, char** argv) {
     int rank = 0, nranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &nranks);
+    const bool own_mesh = sizes.empty() && deck != sedov;  // the deck's mesh, as it is
+    if (sizes.empty()) sizes = {own_mesh ? 0 : 32, 64};
+    if (own_mesh) sizes.resize(1);
     if (rc == 0) {
       const perf::Stream st = perf::stream_triad(1L << 24, 10);
       std::ostringstream rows, js, krows;
       perf::json_machine(js, "hydro_single_material", st, nranks);
       js << ",\n  \"deck\": \"" << deck << "\",\n  \"runs\": [";
       for (std::size_t n = 0; n < sizes.size(); ++n) {
-        const int s = sizes[n];
-        const std::string c = std::to_string(s);
-        Scene scene = read_scene(Deck::load(
-            deck, {"mesh.cells=[" + c + "," + c + "," + c + "]", "time.end=1e9",
-                   "time.max_cycles=" + std::to_string(warmup + cycles), "regions.1.radius=0.15"}));
+        const std::string c = std::to_string(sizes[n]);
+        std::vector<std::string> set{"time.end=1e9",
+                                     "time.max_cycles=" + std::to_string(warmup + cycles)};
+        if (!own_mesh) set.push_back("mesh.cells=[" + c + "," + c + "," + c + "]");
+        if (deck == sedov) set.push_back("regions.1.radius=0.15");
+        Scene scene = read_scene(Deck::load(deck, set));
         RunSettings settings;
         settings.quiet = true;
         Simulation sim(scene, MPI_COMM_WORLD, settings);
@@ -70,7 +82,9 @@ int main(int argc, char** argv) {
         const double wall = ct.wall;
         const double* phase = ct.phase;
         const char* const* phase_names = perf::CycleTimes::names;
-        const double cells = double(s) * s * s;
+        const int s =
+            sim.mesh().global_cells(0);  // labels: the x cells (cubes but for a deck's own)
+        const double cells = double(sim.mesh().global_cell_count());
         const double rate = cells * cycles / wall;
         // the counted model, summed over the ranks' blocks
         const std::map<std::string, double> model =

@@ -528,3 +528,48 @@ TEST(TensorViscosity, RotatesWithTheFlowAndDissipates) {
   EXPECT_EQ(iso.xx, Real(1) / 3);
   EXPECT_EQ(iso.xy, 0);
 }
+
+// The column kernel's eigenvalues (eigenvalues_lanes, 16 tensors at once as vector loops) are
+// the per-tensor Jacobi's bit for bit, and so the direction tensors: random tensors over 30
+// decades, diagonal ones, a zero or a 1e-200 off-diagonal, a double eigenvalue, lanes left out.
+TEST(TensorViscosity, LanesGiveThePerTensorEigenvaluesBitForBit) {
+  std::mt19937_64 gen(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  long differ = 0, compared = 0;
+  for (int it = 0; it < 20000; ++it) {
+    constexpr int N = 16;
+    Real a00[N], a11[N], a22[N], a01[N], a02[N], a12[N];
+    bool done[N];
+    Sym6 d[N];
+    const int n = 1 + it % N;
+    for (int l = 0; l < n; ++l) {
+      const double s = std::pow(10.0, 15 * u(gen));  // (squares within a float's range)
+      d[l] = {Real(u(gen) * s), Real(u(gen) * s), Real(u(gen) * s),
+              Real(u(gen) * s), Real(u(gen) * s), Real(u(gen) * s)};
+      const int kind = (it + l) % 6;
+      if (kind == 1) d[l].xy = d[l].xz = d[l].yz = 0;
+      if (kind == 2) d[l].xy = 0;
+      if (kind == 3) d[l] = {d[l].xx, d[l].zz, d[l].zz, d[l].xy, 0, 0};
+      if (kind == 4) d[l].xy = Real(1e-200);
+      if (kind == 5) d[l] = {1, 1, 1, 0, 0, Real(1e-17)};
+      a00[l] = d[l].xx, a11[l] = d[l].yy, a22[l] = d[l].zz;
+      a01[l] = d[l].xy, a02[l] = d[l].xz, a12[l] = d[l].yz;
+      done[l] = l % 5 == 4 || (d[l].xy == 0 && d[l].xz == 0 && d[l].yz == 0);
+    }
+    hydro::eigenvalues_lanes(n, a00, a11, a22, a01, a02, a12, done);
+    for (int l = 0; l < n; ++l) {
+      if (l % 5 == 4) continue;  // (left out)
+      Real ev[3];
+      const Sym6 s = hydro::compression_direction(d[l], ev);
+      const Real lanes[3] = {a00[l], a11[l], a22[l]};
+      const Sym6 sl = hydro::compression_direction_of(d[l], lanes);
+      ++compared;
+      const bool same = ev[0] == lanes[0] && ev[1] == lanes[1] && ev[2] == lanes[2] &&
+                        s.xx == sl.xx && s.yy == sl.yy && s.zz == sl.zz && s.xy == sl.xy &&
+                        s.xz == sl.xz && s.yz == sl.yz;
+      differ += same ? 0 : 1;
+    }
+  }
+  std::printf("%ld of %ld tensors differ\n", differ, compared);
+  EXPECT_EQ(differ, 0);  // observed 0 of 143,750 (and of 1.4 million in a longer trial)
+}

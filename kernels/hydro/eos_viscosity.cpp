@@ -142,28 +142,50 @@ struct ViscousTensorColumns {
       }
       return false;
     }
-    for (int k = k0; k < k1; ++k) {
-      const Real qq = q(i, j, k);
-      Sym6 t{0, 0, 0, 0, 0, 0};
-      Real jc = 0;
-      if (real_q(i, j, k)) {
-        const Sym6 d{node_jump<0>(u, i, j, k) * rx,
-                     node_jump<1>(v, i, j, k) * ry,
-                     node_jump<2>(w, i, j, k) * rz,
-                     Real(0.5) * (node_jump<1>(u, i, j, k) * ry + node_jump<0>(v, i, j, k) * rx),
-                     Real(0.5) * (node_jump<2>(u, i, j, k) * rz + node_jump<0>(w, i, j, k) * rx),
-                     Real(0.5) * (node_jump<2>(v, i, j, k) * rz + node_jump<1>(w, i, j, k) * ry)};
-        Real ev[3];
-        const Sym6 s = compression_direction(d, ev);
-        const Real qt = qq * (1 - iso), qi = qq * iso;
-        t = {qt * s.xx + qi, qt * s.yy + qi, qt * s.zz + qi, qt * s.xy, qt * s.xz, qt * s.yz};
-        if (conduct && converging(ev)) {
-          jc = jump_of_q(qq, rho(i, j, k), c(i, j, k), cq, cl);
-          conv = conv || jc > 0;
-        }
+    // Chunks of the column: the strain rates and their eigenvalues (the Jacobi sweeps of
+    // point.hpp `eigenvalues`, the cost of this kernel where most cells compress) for the whole
+    // chunk at once as vector loops (eigenvalues_lanes: each cell's the scalar ones bit for
+    // bit), then each cell's stress as before. (A GPU backend's call is one point.)
+    constexpr int kChunk = kWholeColumns ? 16 : 1;
+    for (int kb = k0; kb < k1; kb += kChunk) {
+      const int n = kb + kChunk < k1 ? kChunk : k1 - kb;
+      Real xx[kChunk], yy[kChunk], zz[kChunk], xy[kChunk], xz[kChunk], yz[kChunk];
+      Real e0[kChunk], e1[kChunk], e2[kChunk], f0[kChunk], f1[kChunk], f2[kChunk];
+      bool real[kChunk], done[kChunk];
+#pragma GCC ivdep
+      for (int l = 0; l < n; ++l) {
+        const int k = kb + l;
+        real[l] = real_q(i, j, k);
+        xx[l] = e0[l] = node_jump<0>(u, i, j, k) * rx;
+        yy[l] = e1[l] = node_jump<1>(v, i, j, k) * ry;
+        zz[l] = e2[l] = node_jump<2>(w, i, j, k) * rz;
+        xy[l] = f0[l] = Real(0.5) * (node_jump<1>(u, i, j, k) * ry + node_jump<0>(v, i, j, k) * rx);
+        xz[l] = f1[l] = Real(0.5) * (node_jump<2>(u, i, j, k) * rz + node_jump<0>(w, i, j, k) * rx);
+        yz[l] = f2[l] = Real(0.5) * (node_jump<2>(v, i, j, k) * rz + node_jump<1>(w, i, j, k) * ry);
+        // (a diagonal tensor's eigenvalues are its diagonal: compression_direction's shortcut,
+        // which the first sweep's test would take too)
+        done[l] = !real[l] || (f0[l] == 0 && f1[l] == 0 && f2[l] == 0);
       }
-      Q.set(i, j, k, t);
-      if (conduct) cj(i, j, k) = jc;
+      eigenvalues_lanes(n, e0, e1, e2, f0, f1, f2, done);
+      for (int l = 0; l < n; ++l) {
+        const int k = kb + l;
+        const Real qq = q(i, j, k);
+        Sym6 t{0, 0, 0, 0, 0, 0};
+        Real jc = 0;
+        if (real[l]) {
+          const Sym6 d{xx[l], yy[l], zz[l], xy[l], xz[l], yz[l]};
+          const Real ev[3] = {e0[l], e1[l], e2[l]};
+          const Sym6 s = compression_direction_of(d, ev);
+          const Real qt = qq * (1 - iso), qi = qq * iso;
+          t = {qt * s.xx + qi, qt * s.yy + qi, qt * s.zz + qi, qt * s.xy, qt * s.xz, qt * s.yz};
+          if (conduct && converging(ev)) {
+            jc = jump_of_q(qq, rho(i, j, k), c(i, j, k), cq, cl);
+            conv = conv || jc > 0;
+          }
+        }
+        Q.set(i, j, k, t);
+        if (conduct) cj(i, j, k) = jc;
+      }
     }
     return true;
   }

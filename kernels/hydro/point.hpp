@@ -117,6 +117,66 @@ KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
   ev[2] = a[2][2];
 }
 
+// One rotation of `eigenvalues` (pair p, q; r the third index) on n lanes: a lane that has
+// stopped (done) or whose a[p][q] is 0 keeps its values, the others take exactly the scalar
+// loop's operations, as selects (a loop GCC vectorizes).
+KOKKOS_INLINE_FUNCTION void jacobi_rotation_lanes(int n, const bool* done, Real* app, Real* aqq,
+                                                  Real* apq, Real* arp, Real* arq) {
+#pragma GCC ivdep
+  for (int l = 0; l < n; ++l) {
+    const Real pq = apq[l];
+    const bool go = !done[l] && pq != 0;
+    const Real theta = (aqq[l] - app[l]) / (2 * pq);
+    const Real t = (theta >= 0 ? Real(1) : Real(-1)) / (mabs(theta) + msqrt(theta * theta + 1));
+    const Real c = 1 / msqrt(t * t + 1), s = t * c;
+    const Real rp = arp[l], rq = arq[l];
+    app[l] = go ? app[l] - t * pq : app[l];
+    aqq[l] = go ? aqq[l] + t * pq : aqq[l];
+    apq[l] = go ? Real(0) : pq;
+    arp[l] = go ? c * rp - s * rq : rp;
+    arq[l] = go ? s * rp + c * rq : rq;
+  }
+}
+
+// `eigenvalues` of n tensors at once (n <= N), lane by lane the same operations in the same
+// order: a lane stops at the sweep where the scalar loop breaks and skips the rotations it
+// skips, so each lane's eigenvalues (a00, a11, a22 at the end) are the scalar ones bit for bit.
+// The tensors come in the six arrays (xx, yy, zz, xy, xz, yz), overwritten; `done` marks the
+// lanes not wanted on entry, and every lane on return.
+template <int N>
+KOKKOS_INLINE_FUNCTION void eigenvalues_lanes(int n, Real (&a00)[N], Real (&a11)[N], Real (&a22)[N],
+                                              Real (&a01)[N], Real (&a02)[N], Real (&a12)[N],
+                                              bool (&done)[N]) {
+  for (int sweep = 0; sweep < 8; ++sweep) {
+    int busy = 0;
+    for (int l = 0; l < n; ++l) {
+      const Real off = a01[l] * a01[l] + a02[l] * a02[l] + a12[l] * a12[l];
+      const Real diag = a00[l] * a00[l] + a11[l] * a11[l] + a22[l] * a22[l];
+      done[l] = done[l] || !(off > kRealEpsilon * kRealEpsilon * diag);
+      busy += done[l] ? 0 : 1;
+    }
+    if (busy == 0) return;
+    jacobi_rotation_lanes(n, done, a00, a11, a01, a02, a12);  // p, q, r = 0, 1, 2
+    jacobi_rotation_lanes(n, done, a00, a22, a02, a01, a12);  // 0, 2, 1
+    jacobi_rotation_lanes(n, done, a11, a22, a12, a01, a02);  // 1, 2, 0
+  }
+}
+
+// compression_direction (below) from d's eigenvalues ev, found already (ViscousTensorColumns
+// finds a column's with eigenvalues_lanes)
+KOKKOS_INLINE_FUNCTION Sym6 compression_direction_of(const Sym6& d, const Real ev[3]) {
+  const Real lmax = mmax(ev[0], mmax(ev[1], ev[2]));
+  const Real tr = d.xx + d.yy + d.zz;
+  const Real den = 3 * lmax - tr;
+  const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
+  if (!(den > 64 * kRealEpsilon * scale)) {
+    const Real t = Real(1) / 3;
+    return {t, t, t, 0, 0, 0};
+  }
+  // (divided, not multiplied by 1 / den: a compression along one axis gets exactly 1 there)
+  return {(lmax - d.xx) / den, (lmax - d.yy) / den, (lmax - d.zz) / den,
+          -d.xy / den,         -d.xz / den,         -d.yz / den};
+}
 // S of the strain rate d (components of the symmetric part of the velocity gradient); ev: d's
 // eigenvalues
 KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d, Real ev[3]) {
@@ -129,17 +189,7 @@ KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d, Real ev[3]) {
   } else {
     eigenvalues(d, ev);
   }
-  const Real lmax = mmax(ev[0], mmax(ev[1], ev[2]));
-  const Real tr = d.xx + d.yy + d.zz;
-  const Real den = 3 * lmax - tr;
-  const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
-  if (!(den > 64 * kRealEpsilon * scale)) {
-    const Real t = Real(1) / 3;
-    return {t, t, t, 0, 0, 0};
-  }
-  // (divided, not multiplied by 1 / den: a compression along one axis gets exactly 1 there)
-  return {(lmax - d.xx) / den, (lmax - d.yy) / den, (lmax - d.zz) / den,
-          -d.xy / den,         -d.xz / den,         -d.yz / den};
+  return compression_direction_of(d, ev);
 }
 KOKKOS_INLINE_FUNCTION Sym6 compression_direction(const Sym6& d) {
   Real ev[3];

@@ -4,6 +4,7 @@
 
 #include <type_traits>
 
+#include "core/axis.hpp"
 #include "core/columns.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
@@ -289,67 +290,110 @@ bool Hydro::expansion_worked() {
   return any != 0;
 }
 
-void Hydro::expansion_impulse(int d) {
-  auto rho = s_.rho, pre = s_.pre_vol, post = s_.post_vol, nm = s_.node_mass;
-  auto xw = s_.expansion_work, mf = s_.mass_flux[d], kel = s_.ke_loss;
-  const Field3 u0 = d == 0 ? s_.u : d == 1 ? s_.v : s_.w;
-  const Field3 u1 = d == 0 ? s_.ub : d == 1 ? s_.vb : s_.wb;
-  const int sx = d == 0, sy = d == 1, sz = d == 2;
+namespace {
+
+// The impulse along D as k-columns (core/columns.hpp): a node none of whose 12 faces did work
+// (most nodes of a sweep that did any: the work sits at an expanding contact) is passed over by
+// a vector test of the faces' work first (the same nodes the per-node test below returns at,
+// so the same bits; the kernel took 12 % of bm_short's cycle testing every node one by one,
+// docs/studies/2026-12-07-bm-short-profile.md).
+template <int D>
+void impulse_columns(const Field3& rho, const Field3& pre, const Field3& post, const Field3& nm,
+                     const Field3& xw, const Field3& mf, const Field3& kel, const Field3& u0,
+                     const Field3& u1, const Kokkos::View<int, MemSpace>& flag, const int olo[3],
+                     const int ohi[3]) {
+  constexpr int d = D;
+  constexpr int sx = d == 0, sy = d == 1, sz = d == 2;
   // the two axes across d
-  const int t1 = d == 0 ? 1 : 0, t2 = d == 2 ? 1 : 2;
-  auto flag = s_.expansion_any;
+  constexpr int t1 = d == 0 ? 1 : 0, t2 = d == 2 ? 1 : 2;
+  const int i0 = olo[0], j0 = olo[1], kz0 = olo[2];
+  auto node = KOKKOS_LAMBDA(int i, int j, int k) {
+    // the work of the node's two pairs along d: (n - 1, n) below, (n, n + 1) above; a face
+    // at plane p with flow s (+-1) pushes apart its nodes p - s (behind) and p (on it)
+    Real w_lo = 0, w_hi = 0;
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a)
+        for (int p = -1; p <= 1; ++p) {
+          int o[3] = {i + p * sx, j + p * sy, k + p * sz};
+          o[t1] -= a;
+          o[t2] -= b;
+          const Real work = Real(0.25) * xw(o[0], o[1], o[2]);
+          const bool pos = mf(o[0], o[1], o[2]) > 0;
+          // plane n: the pair below if the flow is +, above if -; plane n - 1 (flow -): below;
+          // plane n + 1 (flow +): above
+          if (p == 0) (pos ? w_lo : w_hi) += work;
+          if (p == -1 && !pos) w_lo += work;
+          if (p == 1 && pos) w_hi += work;
+        }
+    if (!(w_lo > 0) && !(w_hi > 0)) return;
+    const Real un = u0(i, j, k), mn = nm(i, j, k);
+    Real J = 0, meant = 0;
+    if (w_lo > 0) {
+      const Real ul = u0(i - sx, j - sy, k - sz), ml = nm(i - sx, j - sy, k - sz);
+      const Real P = pair_impulse(w_lo, un - ul, ml * mn / (ml + mn));
+      J += P;
+      meant += P * un + P * P / (2 * mn);
+    }
+    if (w_hi > 0) {
+      const Real uh = u0(i + sx, j + sy, k + sz), mh = nm(i + sx, j + sy, k + sz);
+      const Real P = pair_impulse(w_hi, uh - un, mh * mn / (mh + mn));
+      J -= P;
+      meant += -P * un + P * P / (2 * mn);
+    }
+    // the node's remapped mass (an eighth of its 8 cells' after the sweep: the totals' mass)
+    const Real m =
+        Real(0.125) *
+        corner_sum([&](int ci, int cj, int ck) { return rho(ci, cj, ck) * post(ci, cj, ck); },
+                   i - 1, j - 1, k - 1);
+    const Real v = u1(i, j, k);
+    const Real dv = J / m;
+    u1(i, j, k) = v + dv;
+    // energy meant for the node that it did not take: to its cells (as a loss)
+    const Real left = meant - (m * v * dv + Real(0.5) * m * dv * dv);
+    // kel as MomentumFinish stores it: the loss L >= 0, or L over the cells' content
+    const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
+    kel(i, j, k) = ke_stored(ke_unstored(kel(i, j, k), content) + left, content);
+  };
+  for_columns(
+      "remap::expansion_impulse", olo, ohi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+        if (i == i0 && j == j0 && k0 <= kz0 && kz0 < k1) flag() = 0;  // (read already)
+        const auto xa = local(xw);
+        constexpr int kChunk = 16;
+        for (int kb = k0; kb < k1; kb += kChunk) {
+          const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
+          // whether any of the node's faces (as `node` walks them) did work
+          bool work[kChunk];
+#pragma GCC ivdep
+          for (int k = kb; k < ke; ++k) {
+            Real most = 0;
+            for (int b = 0; b < 2; ++b)
+              for (int a = 0; a < 2; ++a)
+                for (int p = -1; p <= 1; ++p) {
+                  const int oi = i + p * sx - (t1 == 0 ? a : 0) - (t2 == 0 ? b : 0);
+                  const int oj = j + p * sy - (t1 == 1 ? a : 0) - (t2 == 1 ? b : 0);
+                  const int ok = k + p * sz - (t1 == 2 ? a : 0) - (t2 == 2 ? b : 0);
+                  most = mmax(most, xa(oi, oj, ok));
+                }
+            work[k - kb] = most > 0;
+          }
+          for (int k = kb; k < ke; ++k)
+            if (work[k - kb]) node(i, j, k);
+        }
+      });
+}
+
+}  // namespace
+
+void Hydro::expansion_impulse(int d) {
   int olo[3], ohi[3];
   mesh_.box(Centering::Node, Region::Owned, olo, ohi);
-  const int i0 = olo[0], j0 = olo[1], k0 = olo[2];
-  Kokkos::parallel_for(
-      "remap::expansion_impulse", mesh_.nodes(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
-        if (i == i0 && j == j0 && k == k0) flag() = 0;  // (the sweep's flag, read already)
-        // the work of the node's two pairs along d: (n - 1, n) below, (n, n + 1) above; a face
-        // at plane p with flow s (+-1) pushes apart its nodes p - s (behind) and p (on it)
-        Real w_lo = 0, w_hi = 0;
-        for (int b = 0; b < 2; ++b)
-          for (int a = 0; a < 2; ++a)
-            for (int p = -1; p <= 1; ++p) {
-              int o[3] = {i + p * sx, j + p * sy, k + p * sz};
-              o[t1] -= a;
-              o[t2] -= b;
-              const Real work = Real(0.25) * xw(o[0], o[1], o[2]);
-              const bool pos = mf(o[0], o[1], o[2]) > 0;
-              // plane n: the pair below if the flow is +, above if -; plane n - 1 (flow -): below;
-              // plane n + 1 (flow +): above
-              if (p == 0) (pos ? w_lo : w_hi) += work;
-              if (p == -1 && !pos) w_lo += work;
-              if (p == 1 && pos) w_hi += work;
-            }
-        if (!(w_lo > 0) && !(w_hi > 0)) return;
-        const Real un = u0(i, j, k), mn = nm(i, j, k);
-        Real J = 0, meant = 0;
-        if (w_lo > 0) {
-          const Real ul = u0(i - sx, j - sy, k - sz), ml = nm(i - sx, j - sy, k - sz);
-          const Real P = pair_impulse(w_lo, un - ul, ml * mn / (ml + mn));
-          J += P;
-          meant += P * un + P * P / (2 * mn);
-        }
-        if (w_hi > 0) {
-          const Real uh = u0(i + sx, j + sy, k + sz), mh = nm(i + sx, j + sy, k + sz);
-          const Real P = pair_impulse(w_hi, uh - un, mh * mn / (mh + mn));
-          J -= P;
-          meant += -P * un + P * P / (2 * mn);
-        }
-        // the node's remapped mass (an eighth of its 8 cells' after the sweep: the totals' mass)
-        const Real m =
-            Real(0.125) *
-            corner_sum([&](int ci, int cj, int ck) { return rho(ci, cj, ck) * post(ci, cj, ck); },
-                       i - 1, j - 1, k - 1);
-        const Real v = u1(i, j, k);
-        const Real dv = J / m;
-        u1(i, j, k) = v + dv;
-        // energy meant for the node that it did not take: to its cells (as a loss)
-        const Real left = meant - (m * v * dv + Real(0.5) * m * dv * dv);
-        // kel as MomentumFinish stores it: the loss L >= 0, or L over the cells' content
-        const Real content = corner_sum(pre, i - 1, j - 1, k - 1);
-        kel(i, j, k) = ke_stored(ke_unstored(kel(i, j, k), content) + left, content);
-      });
+  const Field3 u0 = d == 0 ? s_.u : d == 1 ? s_.v : s_.w;
+  const Field3 u1 = d == 0 ? s_.ub : d == 1 ? s_.vb : s_.wb;
+  with_axis(d, [&](auto a) {
+    impulse_columns<decltype(a)::value>(s_.rho, s_.pre_vol, s_.post_vol, s_.node_mass,
+                                        s_.expansion_work, s_.mass_flux[d], s_.ke_loss, u0, u1,
+                                        s_.expansion_any, olo, ohi);
+  });
 }
 
 }  // namespace mp::hydro
