@@ -293,7 +293,7 @@ TEST(Deck, MaterialsAndRegions) {
       error_of(deck({{16, "  layout: sparse"}})),
       {"deck.yaml:16:", "key 'numerics.layout'", "'sparse' is not one of: compact, dense"});
   expect_holds(error_of(deck({{16, "  interface: plic"}})),
-               {"deck.yaml:16:", "key 'numerics.interface'", "youngs, slic, none"});
+               {"deck.yaml:16:", "key 'numerics.interface'", "youngs, elvira, slic, none"});
   expect_holds(error_of(deck({{16, "  min_fraction: 0.5"}})),
                {"deck.yaml:16:", "key 'numerics.min_fraction'"});
   expect_holds(error_of(deck({{16, "  closure: equilibrium"}})),

@@ -73,13 +73,16 @@ struct FaceFluxes {
     auto normal = [&](int entry, Real* n) {
       const int m = mat_of(entry);
       n[0] = n[1] = n[2] = 0;
-      if (iface == Interface::Youngs) {
+      if (iface == Interface::Youngs || iface == Interface::Elvira) {
         Real st3[3][3][3];
         for (int c = 0; c < 3; ++c)
           for (int b = 0; b < 3; ++b)
             for (int q = 0; q < 3; ++q)
               st3[q][b][c] = mat::cumulative_fraction(dev, di - 1 + q, dj - 1 + b, dk - 1 + c, m);
-        plic::youngs_normal(st3, dx, dy, dz, n);
+        if (iface == Interface::Youngs)
+          plic::youngs_normal(st3, dx, dy, dz, n);
+        else
+          plic::elvira_normal(st3, dx, dy, dz, n);
       } else if (iface == Interface::Slic) {
         const Real g = mat::cumulative_fraction(dev, di + sx, dj + sy, dk + sz, m) -
                        mat::cumulative_fraction(dev, di - sx, dj - sy, dk - sz, m);

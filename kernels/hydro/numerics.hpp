@@ -32,8 +32,9 @@ enum class StepGeometry { MidStep, Fixed };
 // numerics.ke_fix_share: a multi-material node's kinetic-energy loss to its 8 cells by their
 // mass, or an eighth each
 enum class KeFixShare { Mass, Equal };
-// numerics.interface: material fluxes from Youngs' PLIC, SLIC, or fraction-weighted (none)
-enum class Interface { Youngs, Slic, None };
+// numerics.interface: material fluxes from PLIC with Youngs' normal, PLIC with an ELVIRA-type
+// normal (remap/plic.hpp elvira_normal), SLIC, or fraction-weighted (none)
+enum class Interface { Youngs, Slic, None, Elvira };
 // numerics.closure: mixed cells at equal strain, or equal strain then pressure relaxation
 enum class Closure { EqualStrain, Relaxation };
 

@@ -1,6 +1,7 @@
 // Geometric point functions of 3-D PLIC (piecewise-linear interface calculation) for Youngs'
 // interface reconstruction: the volume of a box behind a plane, its inverse, the material
-// volume in a donor cell's flux slab, and Youngs' normal from a 27-cell stencil.
+// volume in a donor cell's flux slab, and Youngs' normal from a 27-cell stencil (and an
+// ELVIRA-type choice among column-sum normals on the same stencil).
 //
 // Conventions, used by every function here:
 //  - A plane is (n, alpha); the material lies on the side n.x <= alpha.
@@ -305,6 +306,98 @@ KOKKOS_INLINE_FUNCTION void youngs_normal(const Real a[3][3][3], Real dx, Real d
 // Youngs' normal on a cubic (or unit-spaced) stencil.
 KOKKOS_INLINE_FUNCTION void youngs_normal(const Real a[3][3][3], Real n[3]) {
   youngs_normal(a, Real(1), Real(1), Real(1), n);
+}
+
+// How badly the plane of normal n through the centre cell of a 3x3x3 block (the plane constant
+// from the centre cell's fraction a[1][1][1]), extended over the block, reproduces the block's
+// volume fractions: the sum of the squared differences over the 27 cells (Pilliod & Puckett's
+// L2 norm of the volume-fraction error, below). The normalisation is done once for the 27
+// cells: a neighbour at offset o sees the same plane with constant alpha - n.o.
+KOKKOS_INLINE_FUNCTION Real block_misfit(const Real a[3][3][3], const Real n[3], Real dx, Real dy,
+                                         Real dz) {
+  Real m1, m2, m3, shift;
+  const Real s = detail::normalise(n[0] * dx, n[1] * dy, n[2] * dz, m1, m2, m3, shift);
+  if (!(s > 0)) return Real(1e30);
+  const Real alpha = cell_plane_alpha(n, a[1][1][1], dx, dy, dz);
+  Real err = 0;
+  for (int p = 0; p < 3; ++p)
+    for (int q = 0; q < 3; ++q)
+      for (int r = 0; r < 3; ++r) {
+        const Real off =
+            n[0] * dx * Real(p - 1) + n[1] * dy * Real(q - 1) + n[2] * dz * Real(r - 1);
+        const Real x = (alpha - off - shift) / s;  // the unit cube's plane constant
+        Real f;
+        if (x <= 0)
+          f = 0;
+        else if (x >= 1)
+          f = 1;
+        else
+          f = x <= Real(0.5) ? detail::unit_volume(m1, m2, m3, x)
+                             : 1 - detail::unit_volume(m1, m2, m3, 1 - x);
+        const Real d = f - a[p][q][r];
+        err += d * d;
+      }
+  return err;
+}
+
+// An ELVIRA-type normal (numerics.interface: elvira): the candidate normal whose plane,
+// extended over the 3x3x3 block, reproduces the block's volume fractions best in the L2 norm,
+// after Pilliod & Puckett's ELVIRA ("Second-order accurate volume-of-fluid algorithms for
+// tracking material interfaces", J. Comput. Phys. 199:465-502, 2004), which picks
+// among the backward, central and forward differences of column sums in 2-D. In 3-D here: the
+// column sums H(u, v) of the three cells along the axis c of the largest component of Youngs'
+// normal, their backward, central and forward differences along each of the two other axes
+// (9 slope pairs, each a plane x_c = dc (H + s_a u + s_b v) with the material on the side
+// Youngs' normal gives), and Youngs' normal itself; ties keep the earlier candidate, Youngs'
+// first. Reproduces a plane whose column sums are its heights (each column of three full below
+// the plane and empty above it), which Youngs' weighted gradient does not; a uniform block gives
+// n = 0 as youngs_normal. About 10 times Youngs' cost (10 candidates, 27 cell volumes each).
+KOKKOS_INLINE_FUNCTION void elvira_normal(const Real a[3][3][3], Real dx, Real dy, Real dz,
+                                          Real n[3]) {
+  youngs_normal(a, dx, dy, dz, n);
+  if (n[0] == 0 && n[1] == 0 && n[2] == 0) return;
+  const Real h[3] = {dx, dy, dz};
+  int c = 0;
+  for (int d = 1; d < 3; ++d)
+    if (mabs(n[d]) > mabs(n[c])) c = d;
+  const int ea = (c + 1) % 3, eb = (c + 2) % 3;  // the two other axes
+  const Real side = n[c] > 0 ? Real(1) : Real(-1);
+  // column sums along c at the positions (u, v) along (ea, eb)
+  Real H[3][3];
+  for (int u = 0; u < 3; ++u)
+    for (int v = 0; v < 3; ++v) {
+      Real sum = 0;
+      for (int w = 0; w < 3; ++w) {
+        int idx[3];
+        idx[ea] = u;
+        idx[eb] = v;
+        idx[c] = w;
+        sum += a[idx[0]][idx[1]][idx[2]];
+      }
+      H[u][v] = sum;
+    }
+  const Real sa[3] = {H[1][1] - H[0][1], Real(0.5) * (H[2][1] - H[0][1]), H[2][1] - H[1][1]};
+  const Real sb[3] = {H[1][1] - H[1][0], Real(0.5) * (H[1][2] - H[1][0]), H[1][2] - H[1][1]};
+  Real best = block_misfit(a, n, dx, dy, dz);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      Real m[3];
+      m[ea] = -h[c] * sa[i] / h[ea];
+      m[eb] = -h[c] * sb[j] / h[eb];
+      m[c] = side;
+      const Real inv = 1 / msqrt(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+      for (int d = 0; d < 3; ++d) m[d] *= inv;
+      const Real e = block_misfit(a, m, dx, dy, dz);
+      if (e < best) {
+        best = e;
+        for (int d = 0; d < 3; ++d) n[d] = m[d];
+      }
+    }
+}
+
+// The ELVIRA-type normal on a cubic (or unit-spaced) stencil.
+KOKKOS_INLINE_FUNCTION void elvira_normal(const Real a[3][3][3], Real n[3]) {
+  elvira_normal(a, Real(1), Real(1), Real(1), n);
 }
 
 }  // namespace mp::plic

@@ -41,6 +41,7 @@ inline const Choices<mat::LayoutKind>& choices(mat::LayoutKind) {
 }
 inline const Choices<hydro::Interface>& choices(hydro::Interface) {
   static const Choices<hydro::Interface> c{{"youngs", hydro::Interface::Youngs},
+                                           {"elvira", hydro::Interface::Elvira},
                                            {"slic", hydro::Interface::Slic},
                                            {"none", hydro::Interface::None}};
   return c;

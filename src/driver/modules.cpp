@@ -249,8 +249,9 @@ std::vector<std::string> Simulation::modules() const {
                      " iterations/cycle) mixed cells"
                : std::string("equal-strain mixed cells"))
        << ", interface reconstruction "
-       << (scene_.numerics.interface == hydro::Interface::Youngs
-               ? "Youngs PLIC (onion skin)"
+       << (scene_.numerics.interface == hydro::Interface::Youngs ? "Youngs PLIC (onion skin)"
+           : scene_.numerics.interface == hydro::Interface::Elvira
+               ? "ELVIRA-type PLIC (onion skin)"
                : name_of(scene_.numerics.interface))
        << ", min fraction " << used;
     if (used > asked)
