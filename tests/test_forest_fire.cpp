@@ -47,9 +47,11 @@ burn::ForestFire pbx9404() {
 TEST(ForestFire, PopPlotInCmAndMbar) {
   const burn::ForestFire ff = pbx9404();
   const double x10 = std::pow(10.0, (1.11 - 1.0) / 0.65) / 10;  // cm
-  EXPECT_NEAR(burn::pop_run_distance(ff.pop, 0.1) / x10, 1.0, 1e-12);
+  // (round-off: float builds observe 1.4e-7)
+  EXPECT_NEAR(burn::pop_run_distance(ff.pop, 0.1) / x10, 1.0, test::roundoff(1e-12));
   for (double p : {0.01, 0.04, 0.1, 0.3})
-    EXPECT_NEAR(burn::pop_pressure(ff.pop, burn::pop_run_distance(ff.pop, p)) / p, 1.0, 1e-12);
+    EXPECT_NEAR(burn::pop_pressure(ff.pop, burn::pop_run_distance(ff.pop, p)) / p, 1.0,
+                test::roundoff(1e-12));
 }
 
 // The unreacted Hugoniot state of a pressure satisfies the jump conditions from (rho0, e0, 0):
@@ -59,10 +61,12 @@ TEST(ForestFire, HugoniotStateMeetsTheJumpConditions) {
   const burn::ForestFire ff = pbx9404();
   for (double p : {0.005, 0.04, 0.1, 0.37}) {
     const burn::HugoniotPoint h = burn::unreacted_hugoniot(ff, p);
-    EXPECT_NEAR(ff.rho0 * h.us * h.up / p, 1.0, 1e-12);
+    EXPECT_NEAR(ff.rho0 * h.us * h.up / p, 1.0, test::roundoff(1e-12));  // float: 2.4e-7
     EXPECT_NEAR(h.us, ff.c0 + ff.s * h.up, 1e-14);
-    EXPECT_NEAR((h.e - ff.e0) / (0.5 * p * (1 / ff.rho0 - 1 / h.rho)), 1.0, 1e-12);
-    EXPECT_NEAR(ff.unreacted.pressure(h.rho, h.e - ff.e0) / p, 1.0, 1e-9);
+    // (float: e - e0 cancels the large chemical energy e0: observed 2.2e-5 and 2.1e-6)
+    EXPECT_NEAR((h.e - ff.e0) / (0.5 * p * (1 / ff.rho0 - 1 / h.rho)), 1.0,
+                test::by_precision(1e-12, 1e-4));
+    EXPECT_NEAR(ff.unreacted.pressure(h.rho, h.e - ff.e0) / p, 1.0, test::by_precision(1e-9, 1e-5));
   }
 }
 
@@ -93,9 +97,10 @@ TEST(ForestFire, RateIsTheShockChangeConstruction) {
   const double r = burn::forest_fire_rate(ff, p);
   std::printf("Forest Fire rate at 6 GPa: %.6f /us (assembled %.6f), dp/dF %.5f Mbar, c %.5f\n", r,
               expect, dpdf, c);
-  EXPECT_NEAR(r / expect, 1.0, 1e-8);
-  // the exact step: F = 1 - exp(-R dt) from 0, never past 1
-  EXPECT_NEAR(burn::forest_fire_step(ff, 0.0, p, 0.1), 1 - std::exp(-r * 0.1), 1e-15);
+  EXPECT_NEAR(r / expect, 1.0, test::by_precision(1e-8, 1e-6));  // float: 5.2e-8
+  // the exact step: F = 1 - exp(-R dt) from 0, never past 1 (float: 1.0e-8)
+  EXPECT_NEAR(burn::forest_fire_step(ff, 0.0, p, 0.1), 1 - std::exp(-r * 0.1),
+              test::roundoff(1e-15));
   EXPECT_LE(burn::forest_fire_step(ff, 0.5, 0.37, 1e3), 1.0);
 }
 
