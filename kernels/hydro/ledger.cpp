@@ -33,6 +33,24 @@ KOKKOS_INLINE_FUNCTION void face_masses(const mat::DenseDev& dev, const Field3&,
   for (int m = 0; m < dev.nmat; ++m) acc.v[m] += double(dev.fm(m, i, j, k));
 }
 
+// A single-material scene: the face's mass flux.
+KOKKOS_INLINE_FUNCTION void face_masses(const Hydro::NoLayout&, const Field3&, const Field3& mf,
+                                        int, int i, int j, int k, SumN<kMaxMaterials>& acc) {
+  acc.v[0] += double(mf(i, j, k));
+}
+
+// The reduction's body over one boundary face plane (a functor: nvcc refuses an extended
+// lambda whose first capture of a variable is inside `if constexpr`).
+template <class Dev>
+struct LedgerFaces {
+  Dev dev;
+  Field3 vf, mf;
+  int d;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k, SumN<kMaxMaterials>& acc) const {
+    face_masses(dev, vf, mf, d, i, j, k, acc);
+  }
+};
+
 }  // namespace
 
 template <class Dev>
@@ -54,13 +72,7 @@ void Hydro::ledger_faces(const Dev& dev, int d) {
     SumN<kMaxMaterials> sum;
     Kokkos::parallel_reduce(
         "remap::mass_ledger", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-        KOKKOS_LAMBDA(int i, int j, int k, SumN<kMaxMaterials>& acc) {
-          if constexpr (std::is_same_v<Dev, Hydro::NoLayout>)
-            acc.v[0] += double(mf(i, j, k));
-          else
-            face_masses(dev, vf, mf, d, i, j, k, acc);
-        },
-        Kokkos::Sum<SumN<kMaxMaterials>>(sum));
+        LedgerFaces<Dev>{dev, vf, mf, d}, Kokkos::Sum<SumN<kMaxMaterials>>(sum));
     // out of the mesh: against the axis at the low face, along it at the high one
     const double out = side == 0 ? -1.0 : 1.0;
     for (int m = 0; m < nm; ++m) ledger_[m * 6 + 2 * d + side] += out * sum.v[m];
