@@ -135,21 +135,10 @@ Initiation initiate(double p_in, double dz, double length, double t_max) {
                                    "output.write=false"}),
                  MPI_COMM_WORLD, settings);
   sim.initialize();
-  auto& hy = sim.hydro();
   std::vector<double> ts, zs;
-  Real dt_old = 0;
-  double t = 0;
-  long cycle = 0;
   std::vector<double> p;
-  while (t < t_max) {
-    const auto step = hy.time_step(dt_old, t, t_max);
-    const hydro::Health health = hy.step(step.dt, cycle);
-    EXPECT_TRUE(health.ok) << health.what;
-    if (!health.ok) break;
-    t += step.dt;
-    dt_old = step.dt;
-    ++cycle;
-    p = test::gather(sim.mesh(), hy.state().p, Centering::Cell);
+  const test::Stepped run = test::step_until(sim, t_max, [&](double t, double) {
+    p = test::gather(sim.mesh(), sim.hydro().state().p, Centering::Cell);
     double z = 0;
     const double level = 0.5 * p_in;
     for (int k = 0; k + 1 < n; ++k)
@@ -159,13 +148,13 @@ Initiation initiate(double p_in, double dz, double length, double t_max) {
     // in the unshocked explosive's frame (it moves at -up until the shock reaches it): the
     // distance the shock has run into it, as a wedge test measures it in explosive at rest
     zs.push_back(z + h.up * t);
-    if (z > length - 0.05) break;
-  }
+    return z <= length - 0.05;
+  });
   Initiation r;
   r.us0 = h.us;
-  r.cycles = cycle;
+  r.cycles = run.cycles;
   r.z_end = zs.back();  // (the explosive's frame)
-  r.t_end = t;
+  r.t_end = run.t;
   for (int k = 0; k < n; ++k) r.p_peak = std::max(r.p_peak, p[4 * k]);
   // the detonation's line: a least-squares fit to the last 0.2 cm of the front's travel
   double s0 = 0, st = 0, sz = 0, stt = 0, stz = 0;
