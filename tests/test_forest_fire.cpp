@@ -150,6 +150,7 @@ Initiation initiate(double p_in, double dz, double length, double t_max) {
     zs.push_back(z + h.up * t);
     return z <= length - 0.05;
   });
+  EXPECT_TRUE(run.health.ok) << run.health.what;
   Initiation r;
   r.us0 = h.us;
   r.cycles = run.cycles;

@@ -49,13 +49,14 @@ Burnt run(const std::string& burn) {
   Burnt out;
   out.t_half.assign(kCells, -1);
   std::vector<double> f;
-  test::step_until(sim, kTEnd, [&](double t, double dt) {
+  const test::Stepped run = test::step_until(sim, kTEnd, [&](double t, double dt) {
     out.dt_max = std::max(out.dt_max, dt);
     f = test::gather(sim.mesh(), b->fraction(), Centering::Cell);
     for (int k = 0; k < kCells; ++k)
       if (out.t_half[k] < 0 && f[4 * k] >= 0.5) out.t_half[k] = t;
     return true;
   });
+  EXPECT_TRUE(run.health.ok) << run.health.what;
   for (int k = 0; k < kCells; ++k) out.f_end.push_back(f[4 * k]);
   return out;
 }
