@@ -18,7 +18,7 @@ packages=(
   g++ cmake make dpkg-dev xz-utils ccache
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev
   libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev
-  python3 python3-numpy python3-h5py python3-matplotlib
+  python3 python3-numpy python3-h5py python3-matplotlib python3-yaml
 )
 
 missing=()
