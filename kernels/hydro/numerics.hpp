@@ -30,8 +30,9 @@ enum class Remap { Split, Unsplit };
 // (mid-step), or on the undeformed faces (fixed)
 enum class StepGeometry { MidStep, Fixed };
 // numerics.ke_fix_share: a multi-material node's kinetic-energy loss to its 8 cells by their
-// mass, or an eighth each
-enum class KeFixShare { Mass, Equal };
+// mass, an eighth each, or by mass to the materials of its cells below half the highest
+// material pressure among them (pressure)
+enum class KeFixShare { Mass, Equal, Pressure };
 // numerics.interface: material fluxes from PLIC with Youngs' normal, PLIC with an ELVIRA-type
 // normal (remap/plic.hpp elvira_normal), SLIC, or fraction-weighted (none)
 enum class Interface { Youngs, Slic, None, Elvira };
