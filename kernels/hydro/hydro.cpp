@@ -76,11 +76,6 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
     std::vector<Real> floors;  // what each EOS accepts below 0 (eos.hpp energy_floor)
     for (int m = 0; m < mats_.n; ++m) floors.push_back(mats_.eos[m].energy_floor());
     mm_->set_energy_floors(floors);
-    if (opt.ke_fix && opt.ke_fix_low_pressure) {
-      s_.ke_low = mesh.new_field("ke_low", N);
-      s_.ke_rest = mesh.new_field("ke_rest", N);
-      s_.ke_pmax = mesh.new_field("ke_pmax", N);
-    }
   }
 }
 

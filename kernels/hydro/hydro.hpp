@@ -89,10 +89,6 @@ struct Options {
   // to each (equal, the rule before 2026-12-03). Single-material scenes have their own budget
   // (ke_fix_share() above) and ignore it.
   bool ke_fix_by_mass;
-  // ... or, by mass still, only to the materials of its cells whose pressure is below half the
-  // highest material pressure among them, where there are such (numerics.ke_fix_share:
-  // pressure; mixed_ke_fix.cpp). ke_fix_by_mass is then true too (kel holds the same values).
-  bool ke_fix_low_pressure;
   // Single-material scenes: where a node made more kinetic energy than its cells can pay
   // (ke_redo), redo its dual faces with donor values (numerics.ke_fix_redo; remap.cpp).
   bool ke_fix_redo;
@@ -147,9 +143,6 @@ struct State {
   Field3 node_mass;   // remap scratch: nodal (dual-cell) mass before a sweep
   Field3 ke_loss;     // remap scratch: kinetic energy the momentum remap took from a node
                       // (multi-material, shares by mass: over 8 times the node's mass)
-  // ke_fix_share: pressure (allocated only then): per node, the specific energy its low- and
-  // other-pressure materials take, and the highest material pressure of its 8 cells
-  Field3 ke_low, ke_rest, ke_pmax;
   // remap scratch of a split sweep: mass flux and upwind velocities of the dual face above
   // each node along the sweep's axis
   Field3 dual_flux, dual_u, dual_v, dual_w, dual_k;  // dual_k: kinetic energy carried per unit mass

@@ -30,9 +30,8 @@ enum class Remap { Split, Unsplit };
 // (mid-step), or on the undeformed faces (fixed)
 enum class StepGeometry { MidStep, Fixed };
 // numerics.ke_fix_share: a multi-material node's kinetic-energy loss to its 8 cells by their
-// mass, an eighth each, or by mass to the materials of its cells below half the highest
-// material pressure among them (pressure)
-enum class KeFixShare { Mass, Equal, Pressure };
+// mass, or an eighth each
+enum class KeFixShare { Mass, Equal };
 // numerics.interface: material fluxes from PLIC with Youngs' normal, PLIC with an ELVIRA-type
 // normal (remap/plic.hpp elvira_normal), SLIC, or fraction-weighted (none)
 enum class Interface { Youngs, Slic, None, Elvira };

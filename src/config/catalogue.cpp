@@ -223,8 +223,8 @@ const std::map<std::string, std::string>& key_notes() {
        "goes to the nodes; 0 off (single material)"},
       {"numerics.ke_fix", "return the remap's kinetic-energy loss as heat"},
       {"numerics.ke_fix_share",
-       "a node's loss to its cells by mass, 1/8 each, or by mass to the materials below half "
-       "the node's highest pressure (multi material)"},
+       "a node's loss to its cells by mass, or 1/8 each (multi "
+       "material)"},
       {"numerics.ke_fix_redo", "donor values where the cells cannot pay (single material)"},
       {"numerics.samples", "sub-cell samples per axis for the initial fractions"},
       {"numerics.layout", "per-material storage (multi material)"},

@@ -31,8 +31,7 @@ inline const Choices<hydro::StepGeometry>& choices(hydro::StepGeometry) {
 }
 inline const Choices<hydro::KeFixShare>& choices(hydro::KeFixShare) {
   static const Choices<hydro::KeFixShare> c{{"mass", hydro::KeFixShare::Mass},
-                                            {"equal", hydro::KeFixShare::Equal},
-                                            {"pressure", hydro::KeFixShare::Pressure}};
+                                            {"equal", hydro::KeFixShare::Equal}};
   return c;
 }
 inline const Choices<mat::LayoutKind>& choices(mat::LayoutKind) {

@@ -150,9 +150,6 @@ std::vector<std::string> Simulation::modules() const {
                                      : "on (no donor-value redo, numerics.ke_fix_redo: false)")
                : scene_.numerics.ke_fix_share == hydro::KeFixShare::Mass
                    ? std::string("on (a node's loss shared by its cells' mass)")
-               : scene_.numerics.ke_fix_share == hydro::KeFixShare::Pressure
-                   ? std::string("on (a node's loss to its low-pressure materials by mass, "
-                                 "numerics.ke_fix_share: pressure)")
                    : std::string("on (a node's loss in eighths, numerics.ke_fix_share: equal)")) +
               // Noh's heat flux (kernels/hydro/conduction.cpp): single-material scenes
               (scene_.numerics.heat_flux > 0 && scene_.materials.size() < 2
