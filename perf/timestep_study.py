@@ -70,6 +70,10 @@ def main():
     ap.add_argument("--out", default=os.path.join(os.path.dirname(__file__), "results", "timestep_rules"))
     ap.add_argument("--skip-stability", action="store_true")
     ap.add_argument("--from-json", default="", help="re-tabulate a previous run's JSON")
+    ap.add_argument("--stability-json", default="",
+                    help="comma-separated timestep_study --json files to use as the stability part "
+                         "(e.g. the long decks run apart with --max-cycles)")
+    ap.add_argument("--stability-note", default="", help="a sentence on how the stability runs were made")
     a = ap.parse_args()
     rules = a.rules.split(",")
     env = dict(os.environ, OMP_NUM_THREADS="1", OMP_WAIT_POLICY="passive", OMP_PROC_BIND="false")
@@ -103,6 +107,14 @@ def main():
             with open(sj) as f:
                 data["stability"] = json.load(f)
             os.remove(sj)
+
+    if a.stability_json:
+        data["stability"] = []
+        for fn in a.stability_json.split(","):
+            with open(fn) as f:
+                data["stability"] += json.load(f)
+    if a.stability_note:
+        data["stability_note"] = a.stability_note
 
     # equal wall time, and equal work (cell-cycles: the same comparison without the machine's
     # noise, the rules' cycles costing the same)
@@ -196,8 +208,9 @@ def main():
             md.append(f"| {row['scene']} | {n} | " + " | ".join(parts) + " |")
     if "stability" in data:
         md.append("\n## Stability: every shipped deck under each rule at its own cfl\n")
-        md.append("The 3-D Noh and Sedov at half their deck resolution. ok: the run reached its end "
-                  + (f"(or {a.max_cycles} cycles) " if a.max_cycles else "")
+        md.append("The 3-D Noh and Sedov at half their deck resolution. " + data.get("stability_note", "") +
+                  " ok: the run reached its end "
+                  + (f"(or {a.max_cycles} cycles) " if a.max_cycles else "(t the time reached) ")
                   + "with every cell physical (the health check); dE/E the relative change of total energy "
                   "(open boundaries, plastic work and inflow change it on some decks: compare across rules).\n")
         decks = []

@@ -28,8 +28,8 @@
 // layout compact | dense (multi-material scenes).
 // --rules combined,separate,cloverleaf runs, instead of those axes, each time.rule on every
 // scene (at 2-3 meshes each; perf/timestep_study.py compares the error at equal wall time).
-// --repeat N runs every point N times back to back and keeps the least wall time (the error is
-// the same bits every time).
+// --repeat N runs every point N times (the variants of a mesh in turn, N rounds) and keeps the
+// least wall time (the error is the same bits every time).
 // Precision is the build's (run the float build's harness too and give both JSON files to
 // perf/plot_tradeoff.py, which draws the error-vs-time Pareto fronts per scene). --quick is the
 // CI-sized sweep (under 3 minutes on 2 cores); the full sweep adds the finer meshes.
@@ -270,18 +270,23 @@ int sweep_main(int argc, char** argv) {
                    const std::vector<int>& full_sizes,
                    const std::vector<std::vector<std::string>>& variants) {
     const bool cubic = !rules.empty();
-    for (int n : quick ? quick_sizes : full_sizes)
-      for (const auto& v : variants) {
-        pts.push_back(run(name, n, v, cubic));
-        for (int r = 1; r < repeat; ++r) {
-          const Point again = run(name, n, v, cubic);
-          if (again.ok && again.wall < pts.back().wall) pts.back().wall = again.wall;
+    for (int n : quick ? quick_sizes : full_sizes) {
+      // the repeats interleaved (every variant once, then again), so that a burst of load on
+      // the shared machine falls on all variants alike
+      const std::size_t first = pts.size();
+      for (const auto& v : variants) pts.push_back(run(name, n, v, cubic));
+      for (int r = 1; r < repeat; ++r)
+        for (std::size_t a = 0; a < variants.size(); ++a) {
+          const Point again = run(name, n, variants[a], cubic);
+          if (again.ok && again.wall < pts[first + a].wall) pts[first + a].wall = again.wall;
         }
-        Point& p = pts.back();
+      for (std::size_t a = first; a < pts.size(); ++a) {
+        Point& p = pts[a];
         p.cell_cycles_per_s = p.wall > 0 ? p.cell_count * p.cycles / p.wall : 0;
         std::fprintf(stderr, "%-10s %4d cells  %-66s error %.4e  %7.3f s  %7.1f MB\n", name.c_str(),
                      n, p.options.c_str(), p.error, p.wall, p.peak_bytes / 1e6);
       }
+    }
   };
   const std::vector<std::vector<std::string>> single = {
       {"numerics.advection=second", "numerics.remap=split"},
