@@ -28,6 +28,7 @@
 // layout compact | dense (multi-material scenes).
 // --rules combined,separate,cloverleaf runs, instead of those axes, each time.rule on every
 // scene (at 2-3 meshes each; perf/timestep_study.py compares the error at equal wall time).
+// --set key=value adds a deck override to every run of --rules.
 // --repeat N runs every point N times (the variants of a mesh in turn, N rounds) and keeps the
 // least wall time (the error is the same bits every time).
 // Precision is the build's (run the float build's harness too and give both JSON files to
@@ -240,7 +241,7 @@ int sweep_main(int argc, char** argv) {
   bool quick = false;
   int repeat = 1;
   std::string json_path, md_path;
-  std::vector<std::string> scenes, rules;
+  std::vector<std::string> scenes, rules, sets;
   app.add_flag("--quick", quick, "CI-sized sweep (under 3 minutes on 2 cores)");
   app.add_option("--json", json_path, "write the points as JSON");
   app.add_option("--md", md_path, "write the Markdown tables");
@@ -250,6 +251,7 @@ int sweep_main(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--rules", rules, "time.rule values: run these instead of the option axes")
       ->delimiter(',');
+  app.add_option("--set", sets, "deck overrides given to every run (key=value)");
   app.add_option("--repeat", repeat, "runs per point, the least wall time kept")
       ->check(CLI::Range(1, 100));
   try {
@@ -311,7 +313,10 @@ int sweep_main(int argc, char** argv) {
   sedov.push_back(fixed);
   if (!rules.empty()) {
     std::vector<std::vector<std::string>> by_rule;
-    for (const auto& r : rules) by_rule.push_back({"time.rule=" + r});
+    for (const auto& r : rules) {
+      by_rule.push_back({"time.rule=" + r});
+      by_rule.back().insert(by_rule.back().end(), sets.begin(), sets.end());
+    }
     for (const auto& s : scenes) {
       if (s == "sedov" || s == "noh" || s == "sphere")
         sweep(s, {16, 24}, {16, 24, 32}, by_rule);
