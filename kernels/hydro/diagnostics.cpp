@@ -66,17 +66,18 @@ struct CflCells {
         // dtc_safe is cfl here, its dtu/dtv/dtw/dtdiv_safe are cfl_transport): the sound limit
         // over the smallest edge, each axis's transport limit from the larger |velocity| of the
         // cell's two faces normal to it (face means of 4 nodes), and a limit on the volume
-        // change rate |div u| from the same face means.
+        // change rate |div u| from the same face means. (fabs, not mabs, as in corners().)
+        using MP_KOKKOS_MATH::fabs;
         const Real ul = face_mean(u, 0, i, j, k), ur = face_mean(u, 0, i + 1, j, k);
         const Real vl = face_mean(v, 1, i, j, k), vr = face_mean(v, 1, i, j + 1, k);
         const Real wl = face_mean(w, 2, i, j, k), wr = face_mean(w, 2, i, j, k + 1);
         const Real dmin = mmin(dx[0], mmin(dx[1], dx[2]));
         dt = cfl * dmin / (ceff + Real(1e-30));
-        dt = mmin(dt, cfl_u * dx[0] / (mmax(mabs(ul), mabs(ur)) + Real(1e-30)));
-        dt = mmin(dt, cfl_u * dx[1] / (mmax(mabs(vl), mabs(vr)) + Real(1e-30)));
-        dt = mmin(dt, cfl_u * dx[2] / (mmax(mabs(wl), mabs(wr)) + Real(1e-30)));
+        dt = mmin(dt, cfl_u * dx[0] / (mmax(fabs(ul), fabs(ur)) + Real(1e-30)));
+        dt = mmin(dt, cfl_u * dx[1] / (mmax(fabs(vl), fabs(vr)) + Real(1e-30)));
+        dt = mmin(dt, cfl_u * dx[2] / (mmax(fabs(wl), fabs(wr)) + Real(1e-30)));
         const Real div = (ur - ul) / dx[0] + (vr - vl) / dx[1] + (wr - wl) / dx[2];
-        dt = mmin(dt, cfl_u / (mabs(div) + Real(1e-30)));
+        dt = mmin(dt, cfl_u / (fabs(div) + Real(1e-30)));
         if constexpr (Unsplit)
           dt = mmin(dt, cfl_u / (vx / dx[0] + vy / dx[1] + vz / dx[2] + Real(1e-30)));
       } else if constexpr (Rule == StepRule::Separate) {
