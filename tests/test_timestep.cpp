@@ -8,6 +8,12 @@
 // fields with the definitions (in Real, the operations in the same order, so the bits agree):
 //   c_eff = sqrt(c^2 + 2 q / rho), v_d = max over the cell's 8 nodes of |velocity_d|,
 //   dt = cfl * min(min_d dx_d / (c_eff + v_d + 1e-30), [unsplit] 1 / (sum_d v_d / dx_d + 1e-30)).
+// and the other two time.rule values (numerics.hpp StepRule) likewise: separate
+//   dt = min_d min(cfl dx_d / (c_eff + 1e-30), cfl_u dx_d / (v_d + 1e-30)),
+// and cloverleaf (CloverLeaf3D_ref's calc_dt_kernel), with f_d-, f_d+ the means of the velocity
+// component d over the 4 nodes of the cell's low and high faces normal to d:
+//   dt = min(cfl min_d dx_d / (c_eff + 1e-30), min_d cfl_u dx_d / (max|f_d+-| + 1e-30),
+//            cfl_u / (|sum_d (f_d+ - f_d-) / dx_d| + 1e-30)).
 #include <gtest/gtest.h>
 #include <mpi.h>
 #include <stdlib.h>
@@ -69,6 +75,42 @@ HostStep host_step(Simulation& sim) {
                 vmax[d] = mmax(vmax[d], mabs(Real(vel[d][node])));
               }
         Real dt = FLT_MAX;
+        if (opt.rule != hydro::StepRule::Combined) {
+          const Real cu = opt.cfl_transport;
+          if (opt.rule == hydro::StepRule::Separate) {
+            for (int d = 0; d < 3; ++d)
+              dt = mmin(dt, mmin(opt.cfl * dx[d] / (ceff + Real(1e-30)),
+                                 cu * dx[d] / (vmax[d] + Real(1e-30))));
+          } else {
+            // the face means, summed in the kernel's order of the 4 nodes
+            const auto v = [&](int d, long a, long b, long cc2) {
+              return Real(vel[d][a + (nx + 1) * (b + (ny + 1) * cc2)]);
+            };
+            Real lo[3], hi[3];
+            for (int side = 0; side < 2; ++side) {
+              Real* f = side == 0 ? lo : hi;
+              f[0] = Real(0.25) * (v(0, i + side, j, k) + v(0, i + side, j + 1, k) +
+                                   v(0, i + side, j, k + 1) + v(0, i + side, j + 1, k + 1));
+              f[1] = Real(0.25) * (v(1, i, j + side, k) + v(1, i + 1, j + side, k) +
+                                   v(1, i, j + side, k + 1) + v(1, i + 1, j + side, k + 1));
+              f[2] = Real(0.25) * (v(2, i, j, k + side) + v(2, i + 1, j, k + side) +
+                                   v(2, i, j + 1, k + side) + v(2, i + 1, j + 1, k + side));
+            }
+            dt = opt.cfl * mmin(dx[0], mmin(dx[1], dx[2])) / (ceff + Real(1e-30));
+            for (int d = 0; d < 3; ++d)
+              dt = mmin(dt, cu * dx[d] / (mmax(mabs(lo[d]), mabs(hi[d])) + Real(1e-30)));
+            const Real div =
+                (hi[0] - lo[0]) / dx[0] + (hi[1] - lo[1]) / dx[1] + (hi[2] - lo[2]) / dx[2];
+            dt = mmin(dt, cu / (mabs(div) + Real(1e-30)));
+          }
+          if (dt < h.dt) {
+            h.dt = dt;
+            h.limit = "cfl";
+            h.limiting.clear();
+          }
+          if (dt == h.dt) h.limiting.push_back({int(i), int(j), int(k)});
+          continue;
+        }
         for (int d = 0; d < 3; ++d) dt = mmin(dt, dx[d] / (ceff + vmax[d] + Real(1e-30)));
         bool sum = false;
         if (opt.unsplit) {
@@ -150,6 +192,80 @@ TEST(TimeStep, ViscosityAndNodeSpeedEnterTheLimit) {
   std::printf("  sound speed alone would allow %.6e; the limit is %.4f of it\n", dt_sound,
               double(ts.dt) / dt_sound);
   EXPECT_LT(double(ts.dt), 0.99 * dt_sound);
+}
+
+// The three time.rule values on one state (a Sod tube after 10 cycles under the default rule:
+// moving nodes, a viscous shock): each step equals its host recomputation bit for bit; the
+// combined rule's is the shortest (it adds |u| to c_eff), and the separate and CloverLeaf rules
+// allow more (each cell's separate limits both exceed cfl dx / (c_eff + |u|); CloverLeaf's face
+// means are at most the corner maxima; observed ratios in the printout).
+TEST(TimeStep, EachRuleMatchesItsDefinition) {
+  auto sim =
+      make("sod_x.yaml", {"mesh.cells=[50,2,2]", "mesh.hi=[1,0.04,0.04]", "time.max_cycles=10"});
+  sim->run();
+  const hydro::TimeStep comb = sim->hydro().time_step(0, 0, 1e30);
+  expect_host_step(comb, host_step(*sim), "combined");
+  const Real cu = sim->hydro().options().cfl_transport;
+  for (const auto rule : {hydro::StepRule::Separate, hydro::StepRule::CloverLeaf}) {
+    sim->hydro().set_time_rule(rule, cu);
+    const hydro::TimeStep ts = sim->hydro().time_step(0, 0, 1e30);
+    const char* name = rule == hydro::StepRule::Separate ? "separate" : "cloverleaf";
+    expect_host_step(ts, host_step(*sim), name);
+    std::printf("  %s / combined: %.4f\n", name, double(ts.dt / comb.dt));
+    EXPECT_GT(ts.dt, comb.dt) << name;
+  }
+  sim->hydro().set_time_rule(hydro::StepRule::Combined, cu);
+}
+
+// A uniform stream (c = 0.0374, u = 10 along x, periodic): the transport limit binds. Separate:
+// cfl_u dx / |u|; CloverLeaf: the same from the face means (all equal to u), and its divergence
+// limit is idle (div u = 0); the combined rule cfl dx / (c + |u|).
+TEST(TimeStep, TransportLimitOfEachRule) {
+  const std::vector<std::string> flow = {
+      "mesh.cells=[20,2,2]",         "mesh.hi=[0.1,0.01,0.01]",     "boundaries.x=periodic",
+      "regions.0.velocity=[10,0,0]", "regions.1.velocity=[10,0,0]", "regions.0.pressure=1e-3",
+      "regions.1.pressure=1e-3",     "time.cfl_transport=0.5"};
+  for (const char* rule : {"combined", "separate", "cloverleaf"}) {
+    auto ov = flow;
+    ov.push_back(std::string("time.rule=") + rule);
+    auto sim = make("sod_x.yaml", ov);
+    const hydro::TimeStep ts = sim->hydro().time_step(0, 0, 1e30);
+    expect_host_step(ts, host_step(*sim), rule);
+    const Real dx = sim->mesh().dx(0), cfl = sim->hydro().options().cfl;
+    if (std::string(rule) == "combined") {
+      EXPECT_LT(ts.dt, cfl * dx / Real(10));
+    } else {
+      EXPECT_EQ(ts.dt, Real(0.5) * dx / (Real(10) + Real(1e-30))) << rule;
+    }
+  }
+}
+
+// CloverLeaf's divergence limit: the 123 problem at its start (u = -2 | +2 about x = 0.5,
+// c = 0.75) with cfl_transport 0.1, so the flow limits bind rather than the sound. The separate
+// rule takes 0.1 dx / max|u| = 0.05 dx in every cell (all 160 tie). CloverLeaf's transport limit
+// is the same in every cell, but its divergence limit 0.1 / |div u| acts only in the two cells
+// beside the split, whose faces move apart at 2 / dx (the node at 0.5 at rest): there it is
+// 0.05 dx too, 1 ulp below the transport limit's rounding (observed 0.00125 against
+// 0.0012500000000000002), so the limiting cells are those 8 (2 x 2 x 2). Both steps match their
+// host recomputations bit for bit (the limiting cells are asserted in double builds).
+TEST(TimeStep, DivergenceLimitOfCloverLeafRule) {
+  const Real dx = Real(1) / 40;
+  for (const char* rule : {"separate", "cloverleaf"}) {
+    auto sim = make("test123.yaml", {"mesh.cells=[40,2,2]", "mesh.hi=[1,0.05,0.05]",
+                                     "time.cfl_transport=0.1", std::string("time.rule=") + rule});
+    const hydro::TimeStep ts = sim->hydro().time_step(0, 0, 1e30);
+    const HostStep h = host_step(*sim);
+    expect_host_step(ts, h, rule);
+    EXPECT_NEAR(double(ts.dt), 0.05 * double(dx), 1e-6 * double(dx)) << rule;
+    // (the 1-ulp parting is double's; a float build may round the two limits alike)
+    if (sizeof(Real) != 8) continue;
+    if (std::string(rule) == "separate") {
+      EXPECT_EQ(h.limiting.size(), 160u);
+    } else {
+      EXPECT_EQ(h.limiting.size(), 8u);
+      for (const auto& c : h.limiting) EXPECT_TRUE(c[0] == 19 || c[0] == 20) << cell_text(c);
+    }
+  }
 }
 
 // The linear viscosity's own stability bound (diagnostics.cpp, CflCells): an undamped acoustic

@@ -42,7 +42,17 @@ struct CflCells {
     return mmax(m, fabs(f(i + 1, j + 1, k + 1)));
   }
 
-  template <bool Separate, bool Unsplit>
+  // the mean of a node field over the 4 nodes of a cell face: the low face of cell (i, j, k)
+  // normal to axis a (and its high face at i + 1, j + 1 or k + 1)
+  KOKKOS_INLINE_FUNCTION static Real face_mean(const A& f, int a, int i, int j, int k) {
+    if (a == 0)
+      return Real(0.25) * (f(i, j, k) + f(i, j + 1, k) + f(i, j, k + 1) + f(i, j + 1, k + 1));
+    if (a == 1)
+      return Real(0.25) * (f(i, j, k) + f(i + 1, j, k) + f(i, j, k + 1) + f(i + 1, j, k + 1));
+    return Real(0.25) * (f(i, j, k) + f(i + 1, j, k) + f(i, j + 1, k) + f(i + 1, j + 1, k));
+  }
+
+  template <StepRule Rule, bool Unsplit>
   KOKKOS_INLINE_FUNCTION void chunk(int i, int j, int kb, int ke, Real* dt_out,
                                     Real* sum_out) const {
 #pragma GCC ivdep
@@ -51,7 +61,27 @@ struct CflCells {
       const Real ceff = msqrt(c(i, j, k) * c(i, j, k) + 2 * q(i, j, k) / rho(i, j, k));
       const Real vx = corners(u, i, j, k), vy = corners(v, i, j, k), vz = corners(w, i, j, k);
       Real dt = FLT_MAX, sum = 0;
-      if constexpr (Separate) {  // each limit with its own safety factor, applied here
+      if constexpr (Rule == StepRule::CloverLeaf) {
+        // CloverLeaf3D_ref's rule (UK-MAC, calc_dt_kernel.f90, subroutine calc_dt_kernel; its
+        // dtc_safe is cfl here, its dtu/dtv/dtw/dtdiv_safe are cfl_transport): the sound limit
+        // over the smallest edge, each axis's transport limit from the larger |velocity| of the
+        // cell's two faces normal to it (face means of 4 nodes), and a limit on the volume
+        // change rate |div u| from the same face means. (fabs, not mabs, as in corners().)
+        using MP_KOKKOS_MATH::fabs;
+        const Real ul = face_mean(u, 0, i, j, k), ur = face_mean(u, 0, i + 1, j, k);
+        const Real vl = face_mean(v, 1, i, j, k), vr = face_mean(v, 1, i, j + 1, k);
+        const Real wl = face_mean(w, 2, i, j, k), wr = face_mean(w, 2, i, j, k + 1);
+        const Real dmin = mmin(dx[0], mmin(dx[1], dx[2]));
+        dt = cfl * dmin / (ceff + Real(1e-30));
+        dt = mmin(dt, cfl_u * dx[0] / (mmax(fabs(ul), fabs(ur)) + Real(1e-30)));
+        dt = mmin(dt, cfl_u * dx[1] / (mmax(fabs(vl), fabs(vr)) + Real(1e-30)));
+        dt = mmin(dt, cfl_u * dx[2] / (mmax(fabs(wl), fabs(wr)) + Real(1e-30)));
+        const Real div = (ur - ul) / dx[0] + (vr - vl) / dx[1] + (wr - wl) / dx[2];
+        dt = mmin(dt, cfl_u / (fabs(div) + Real(1e-30)));
+        if constexpr (Unsplit)
+          dt = mmin(dt, cfl_u / (vx / dx[0] + vy / dx[1] + vz / dx[2] + Real(1e-30)));
+      } else if constexpr (Rule == StepRule::Separate) {
+        // each limit with its own safety factor, applied here
         dt = mmin(dt, mmin(cfl * dx[0] / (ceff + Real(1e-30)), cfl_u * dx[0] / (vx + Real(1e-30))));
         dt = mmin(dt, mmin(cfl * dx[1] / (ceff + Real(1e-30)), cfl_u * dx[1] / (vy + Real(1e-30))));
         dt = mmin(dt, mmin(cfl * dx[2] / (ceff + Real(1e-30)), cfl_u * dx[2] / (vz + Real(1e-30))));
@@ -95,7 +125,7 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
   auto c = s_.c, q = s_.q, rho = s_.rho, u = s_.u, v = s_.v, w = s_.w;
   const Real cfl = opt_.cfl;
   const bool unsplit = opt_.unsplit;
-  const bool separate = opt_.separate_limits;
+  const StepRule rule = opt_.rule;
   const Real cfl_u = opt_.cfl_transport;
   const Real c_lin = opt_.q_linear;
   const int nlx = g.nl[0], nly = g.nl[1], ng = g.ng;
@@ -117,16 +147,21 @@ TimeStep Hydro::time_step(Real dt_old, double t, double t_end) const {
         Real dts[kChunk], sums[kChunk];
         for (int kb = k0; kb < k1; kb += kChunk) {
           const int ke = kb + kChunk < k1 ? kb + kChunk : k1;
-          if (separate) {
+          if (rule == StepRule::Separate) {
             if (unsplit)
-              cells.template chunk<true, true>(i, j, kb, ke, dts, sums);
+              cells.template chunk<StepRule::Separate, true>(i, j, kb, ke, dts, sums);
             else
-              cells.template chunk<true, false>(i, j, kb, ke, dts, sums);
+              cells.template chunk<StepRule::Separate, false>(i, j, kb, ke, dts, sums);
+          } else if (rule == StepRule::CloverLeaf) {
+            if (unsplit)
+              cells.template chunk<StepRule::CloverLeaf, true>(i, j, kb, ke, dts, sums);
+            else
+              cells.template chunk<StepRule::CloverLeaf, false>(i, j, kb, ke, dts, sums);
           } else {
             if (unsplit)
-              cells.template chunk<false, true>(i, j, kb, ke, dts, sums);
+              cells.template chunk<StepRule::Combined, true>(i, j, kb, ke, dts, sums);
             else
-              cells.template chunk<false, false>(i, j, kb, ke, dts, sums);
+              cells.template chunk<StepRule::Combined, false>(i, j, kb, ke, dts, sums);
           }
           for (int k = kb; k < ke; ++k)
             if (dts[k - kb] < acc.val) {

@@ -72,12 +72,14 @@ struct Options {
   // ideal-gas scenes on split sweeps with the KE fix (the others ignore it).
   Real free_expansion;
   Real cfl;
-  // Time-step rule. Combined (default): dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the
-  // sound speed and the transport speed limit the step each on its own, with its own safety
-  // factor: dt = min_d min(cfl dx_d / c_eff, cfl_transport dx_d / |u_d|) (perf/timestep_study.cpp
-  // measures it on the verification scenes; docs/numerics.md says why it is not the default).
-  bool separate_limits = false;
-  Real cfl_transport = 0.5;
+  // Time-step rule (time.rule; numerics.hpp StepRule, diagnostics.cpp CflCells). Combined:
+  // dt = cfl min_d dx_d / (c_eff + |u_d|). Separate: the sound speed and the transport speed
+  // limit the step each on its own, with its own safety factor: dt = min_d min(cfl dx_d / c_eff,
+  // cfl_transport dx_d / |u_d|). CloverLeaf: CloverLeaf3D_ref's sound, face-velocity and
+  // divergence limits. perf/timestep_study.py measures them on the verification scenes;
+  // docs/numerics.md says why the default is what it is.
+  StepRule rule;
+  Real cfl_transport;
   Real growth;
   Real dt_max;
   // Give the kinetic energy that the momentum remap dissipates back to the cells as internal
@@ -217,9 +219,9 @@ class Hydro {
   const Options& options() const { return opt_; }
   // whether this step runs the mid-step geometry (Options::mid_geometry, where it applies)
   bool mid_geometry() const { return mid_geometry_; }
-  // Switches the time-step rule (the scene reader does not set it; perf/timestep_study.cpp).
-  void set_time_limits(bool separate, Real cfl_transport) {
-    opt_.separate_limits = separate;
+  // Switches the time-step rule (the scene reader sets it from time.rule; tests).
+  void set_time_rule(StepRule rule, Real cfl_transport) {
+    opt_.rule = rule;
     opt_.cfl_transport = cfl_transport;
   }
   // Switches the remap's monotonicity limiter off (verification only: the scene reader does

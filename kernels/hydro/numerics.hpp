@@ -69,9 +69,21 @@ struct Numerics {
   double solid_floor = 0;          // least rho/rho0 of a Mie-Grueneisen material in a mixed cell
 };
 
-// The time step's controls (the deck's time.cfl, time.growth, time.dt_max).
+// time.rule: the time step's stability rule (diagnostics.cpp CflCells; docs/numerics.md, "Time
+// step"). Combined: dt = cfl dx / (c_eff + |u|) per axis, with the linear viscosity's bound.
+// Separate: dt = min(cfl dx / c_eff, cfl_transport dx / |u|) per axis. CloverLeaf: UK-MAC
+// CloverLeaf3D_ref's rule (calc_dt_kernel.f90, subroutine calc_dt_kernel): cfl min(dx) / c_eff,
+// cfl_transport dx / |face-averaged u| per axis and cfl_transport / |div u|.
+enum class StepRule { Combined, Separate, CloverLeaf };
+
+// The time step's controls (the deck's time.cfl, time.rule, time.cfl_transport, time.growth,
+// time.dt_max).
 struct StepControl {
   double cfl = 0.5;
+  StepRule rule = StepRule::Combined;
+  // the transport (and, for CloverLeaf's rule, divergence) limits' safety factor; the combined
+  // rule ignores it
+  double cfl_transport = 0.5;
   double growth = 1.1;
   double dt_max = 1e30;
 };

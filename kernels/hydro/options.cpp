@@ -13,6 +13,8 @@ Options::Options(const Numerics& n, const StepControl& t)
       mid_geometry(n.geometry == StepGeometry::MidStep),
       free_expansion(Real(n.free_expansion)),
       cfl(Real(t.cfl)),
+      rule(t.rule),
+      cfl_transport(Real(t.cfl_transport)),
       growth(Real(t.growth)),
       dt_max(Real(t.dt_max)),
       ke_fix(n.ke_fix),

@@ -16,7 +16,8 @@ const char* const kCatalogueDecks[] = {
 description: every single-material key
 mesh: {cells: [4, 4, 4], lo: [0, 0, 0], hi: [1, 1, 1], ranks: [0, 0, 0]}
 boundaries: {x: reflective, y: {lo: reflective, hi: outflow}, z: periodic}
-time: {end: 1, cfl: 0.5, dt_initial: 1.0e-4, dt_max: 1, growth: 1.1, max_cycles: 10}
+time: {end: 1, cfl: 0.5, rule: combined, cfl_transport: 0.5, dt_initial: 1.0e-4, dt_max: 1,
+       growth: 1.1, max_cycles: 10}
 numerics:
   advection: second
   remap: split
@@ -202,6 +203,11 @@ const std::map<std::string, std::string>& key_notes() {
       {"time", "end time and the time step's controls"},
       {"time.end", "simulated end time, > 0"},
       {"time.cfl", "Courant number"},
+      {"time.rule",
+       "combined: dx / (c + |u|); separate: dx / c and dx / |u| apart; cloverleaf: "
+       "CloverLeaf3D's (docs/numerics.md)"},
+      {"time.cfl_transport",
+       "safety factor of the |u| (and div u) limits of the separate and cloverleaf rules"},
       {"time.dt_initial", "first step at most this"},
       {"time.dt_max", "largest step"},
       {"time.growth", "step grows at most this factor per cycle"},

@@ -51,6 +51,12 @@ inline const Choices<hydro::Closure>& choices(hydro::Closure) {
                                          {"relaxation", hydro::Closure::Relaxation}};
   return c;
 }
+inline const Choices<hydro::StepRule>& choices(hydro::StepRule) {
+  static const Choices<hydro::StepRule> c{{"combined", hydro::StepRule::Combined},
+                                          {"separate", hydro::StepRule::Separate},
+                                          {"cloverleaf", hydro::StepRule::CloverLeaf}};
+  return c;
+}
 
 // The deck's name of a typed numerics value ("second", "compact", ...).
 template <class E>

@@ -307,6 +307,8 @@ std::map<std::string, std::string> resolved_numerics(const Scene& s) {
           {"numerics.void_density", real(n.void_density)},
           {"numerics.solid_floor", real(n.solid_floor)},
           {"time.cfl", real(s.time.cfl)},
+          {"time.rule", name_of(s.time.rule)},
+          {"time.cfl_transport", real(s.time.cfl_transport)},
           {"time.growth", real(s.time.growth)},
           {"time.dt_max", real(s.time.dt_max)}};
 }
@@ -330,10 +332,13 @@ Scene read_scene(const Deck& deck) {
   read_mesh(root, s);
 
   const DeckNode t = root.child("time");
-  t.expect_keys({"end", "cfl", "dt_initial", "dt_max", "growth", "max_cycles"});
+  t.expect_keys(
+      {"end", "cfl", "rule", "cfl_transport", "dt_initial", "dt_max", "growth", "max_cycles"});
   s.time.end = t.get_real("end", 0, kHuge);
   if (!(s.time.end > 0)) t.child("end").fail("end time must be positive");
   s.time.cfl = t.get_real("cfl", 1e-3, 1.0, s.time.cfl);
+  s.time.rule = t.get_choice("rule", choices(s.time.rule), s.time.rule);
+  s.time.cfl_transport = t.get_real("cfl_transport", 1e-3, 1.0, s.time.cfl_transport);
   s.time.dt_initial = t.get_real("dt_initial", 1e-300, kHuge, s.time.dt_initial);
   s.time.dt_max = t.get_real("dt_max", 1e-300, kHuge, s.time.dt_max);
   s.time.growth = t.get_real("growth", 1.0, 10.0, s.time.growth);
