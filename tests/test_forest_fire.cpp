@@ -4,6 +4,7 @@
 // 0.65 log10(x*/mm)), and the detonation runs at the products' D (Dobratz & Crawford JWL,
 // 0.880 cm/us). Run distance: the experiments' definition, where the front's z-t trajectory
 // leaves the input shock's line z = Us(P) t for the detonation's line (their intersection).
+// Also the mixture closure's pressure-equilibrium option (MixtureClosure).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "burn/forest_fire.hpp"
@@ -102,6 +104,63 @@ TEST(ForestFire, RateIsTheShockChangeConstruction) {
   EXPECT_NEAR(burn::forest_fire_step(ff, 0.0, p, 0.1), 1 - std::exp(-r * 0.1),
               test::roundoff(1e-15));
   EXPECT_LE(burn::forest_fire_step(ff, 0.5, 0.37, 1e3), 1.0);
+}
+
+// The pressure-equilibrium closure (burn.closure: pressure_equilibrium; eos/reactive.hpp
+// he_equilibrium) at states of a shocked, part-burnt cell: the two phases share one pressure to
+// round-off, their volumes add up to the cell's (the energies, e_u = e_p = e, add up by
+// construction), the pure phases come back at F = 0 and 1, the frozen-F c^2 is the closure's own
+// derivative (centred differences), and dp/dF at F = 0 (what the Forest Fire rate divides by) is
+// the slope of p(F) there.
+TEST(MixtureClosure, PressureEquilibriumSharesOnePressureAndTheCellVolume) {
+  const burn::ForestFire ff = pbx9404();
+  const eos::Eos &u = ff.unreacted, &pr = ff.products;
+  for (double p_in : {0.02, 0.06, 0.2}) {
+    const burn::HugoniotPoint h = burn::unreacted_hugoniot(ff, p_in);
+    for (double rho : {h.rho, 1.1 * h.rho}) {
+      const double e = h.e;
+      EXPECT_EQ(eos::he_equilibrium(u, pr, ff.e0, 0.0, rho, e).p, u.pressure(rho, e - ff.e0));
+      EXPECT_EQ(eos::he_equilibrium(u, pr, ff.e0, 1.0, rho, e).p, pr.pressure(rho, e));
+      for (double f : {1e-9, 1e-3, 0.1, 0.5, 0.9, 1 - 1e-6}) {
+        const eos::PhaseSplit s = eos::he_equilibrium(u, pr, ff.e0, f, rho, e);
+        const double pu = u.pressure(s.rho_u, e - ff.e0), pp = pr.pressure(s.rho_p, e);
+        const double vol = (1 - f) / s.rho_u + f / s.rho_p;
+        std::printf(
+            "P %.2f Mbar, rho %.4f, F %.1e: p %.6f Mbar (shared state %.6f), rho_u %.5f rho_p "
+            "%.5f, |P_u - P_p|/p %.1e, volume %.1e, %d iterations\n",
+            p_in, rho, f, s.p, eos::he_pressure_mixed(u, pr, ff.e0, f, rho, e), s.rho_u, s.rho_p,
+            std::abs(pu - pp) / s.p, vol * rho - 1, s.iterations);
+        // one pressure (observed <= 1.7e-15 double)
+        EXPECT_NEAR((pu - pp) / s.p, 0.0, test::by_precision(1e-13, 1e-4));
+        // the cell's volume (observed <= 2e-16 double)
+        EXPECT_NEAR(vol * rho, 1.0, test::roundoff(1e-14));
+        // the closure's c^2 against centred differences of its p(rho, e) (observed <= 3.4e-10)
+        const double dr = 1e-6 * rho, de = 1e-6 * e;
+        auto pe = [&](double r, double en) {
+          return eos::he_pressure_mixed(u, pr, ff.e0, f, r, en, true);
+        };
+        const double c2_fd = (pe(rho + dr, e) - pe(rho - dr, e)) / (2 * dr) +
+                             s.p / (rho * rho) * (pe(rho, e + de) - pe(rho, e - de)) / (2 * de);
+        const double c2 = eos::he_sound_speed2_equilibrium(u, pr, ff.e0, f, rho, e);
+        std::printf("  c^2 %.6e against centred differences %.6e (%.1e)\n", c2, c2_fd,
+                    c2 / c2_fd - 1);
+        if (std::is_same<Real, double>::value) {
+          EXPECT_NEAR(c2 / c2_fd, 1.0, 1e-6) << f;
+        }
+      }
+      // dp/dF at F = 0 against the slope of p(F) over dF = 1e-7 (observed: equal to 6 digits)
+      const double df = 1e-7;
+      const double slope = (eos::he_equilibrium(u, pr, ff.e0, df, rho, e).p -
+                            eos::he_equilibrium(u, pr, ff.e0, 0.0, rho, e).p) /
+                           df;
+      const double dpdf = eos::he_dpdf_equilibrium(u, pr, ff.e0, rho, e);
+      std::printf("  dp/dF(0) %.6f Mbar (slope %.6f; shared state %.6f)\n", dpdf, slope,
+                  pr.pressure(rho, e) - u.pressure(rho, e - ff.e0));
+      if (std::is_same<Real, double>::value) {
+        EXPECT_NEAR(dpdf / slope, 1.0, 1e-4);
+      }
+    }
+  }
 }
 
 namespace {
@@ -270,6 +329,10 @@ TEST(ForestFire, DeckErrorsNameTheKey) {
       {{"materials.0.burn.forest_fire={pop: pbx9404}"}, "unknown key 'pop'"},
       {{"materials.0.burn={programmed: false, forest_fire: {pop_plot: pbx9404}}"},
        "forest_fire needs the unreacted solid's EOS"},
+      {{"materials.0.burn.closure=pressure_equlibrium"}, "did you mean 'pressure_equilibrium'"},
+      {{"materials.0.burn={programmed: false, forest_fire: {pop_plot: pbx9404}, closure: "
+        "pressure_equilibrium}"},
+       "closure needs the unreacted solid's EOS"},
   };
   for (const auto& c : cases) {
     const std::string msg = test::input_error("shock_initiation.yaml", c.set);
