@@ -19,12 +19,14 @@
 //    2007), whose form LANL EOSlib's FFrate evaluates; read there, not copied.
 // Forest Fire then applies R(P) everywhere, to the local pressure: -(1/W) dW/dt = R(p), W = 1 - F
 // the unreacted mass fraction (Mader's form; Mader fits log R by a polynomial in P, here it is
-// evaluated directly). dp/dlambda and c are those of the code's own mixture closure
-// (eos/reactive.hpp he_pressure_mixed): at F = 0, dp/dF = P_products(rho, e) - P_u(rho, e - e0)
-// and c is the unreacted solid's.
+// evaluated directly). dp/dlambda and c are those of the code's own mixture closure at F = 0
+// (eos/reactive.hpp): c is the unreacted solid's, and dp/dF = P_products(rho, e) - P_u(rho, e - e0)
+// with both phases at the cell's state (he_pressure_mixed), or (dP_u/dv)_e (v - v_p*) with the
+// phases at one pressure (he_dpdf_equilibrium).
 #pragma once
 #include "core/math.hpp"
 #include "eos/eos.hpp"
+#include "eos/reactive.hpp"
 
 namespace mp::burn {
 
@@ -85,6 +87,7 @@ struct ForestFire {
   Real e0 = 0;                   // unreacted energy origin, cm^2/us^2
   Real p_max = 0;                // the rate is R(min(p, p_max)); p_max = p_cj
   eos::Eos unreacted, products;
+  bool equilibrium = false;  // the mixture closure: pressure equilibrium (eos/reactive.hpp)
 };
 
 // The unreacted Hugoniot state of pressure p > 0: particle and shock speeds, density, energy.
@@ -109,7 +112,9 @@ KOKKOS_INLINE_FUNCTION Real forest_fire_rate(const ForestFire& ff, Real p) {
   p = mmin(p, ff.p_max);
   const HugoniotPoint h = unreacted_hugoniot(ff, p);
   const Real dpdx = p / (-ff.pop.b * pop_run_distance(ff.pop, p));
-  const Real dpdf = ff.products.pressure(h.rho, h.e) - ff.unreacted.pressure(h.rho, h.e - ff.e0);
+  const Real dpdf =
+      ff.equilibrium ? eos::he_dpdf_equilibrium(ff.unreacted, ff.products, ff.e0, h.rho, h.e)
+                     : ff.products.pressure(h.rho, h.e) - ff.unreacted.pressure(h.rho, h.e - ff.e0);
   const Real c = ff.unreacted.sound_speed(h.rho, h.e - ff.e0);
   const Real slope = h.us * (1 + ff.s * h.up / h.us);  // dp/du / rho0 on the Hugoniot
   const Real factor = 1 + h.rho * c / (ff.rho0 * slope);

@@ -26,7 +26,7 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   ff_on_ = setup.forest_fire;
   ff_ = setup.ff;
   c_floor_ = setup.programmed || setup.volume_burn ? params_.d_cj : Real(0);
-  reactive_ = {-1, f_, c_floor_, mixed_, unreacted_, e0_};
+  reactive_ = {-1, f_, c_floor_, mixed_, unreacted_, e0_, setup.equilibrium};
   if (!setup.programmed || setup.material >= 0) return;
   // every cell is explosive in a single-material scene, so the Huygens construction is the
   // straight-line distance
@@ -168,7 +168,8 @@ struct MixedFraction {
         // Forest Fire: at the explosive's own pressure (the mixture closure at F_old); no
         // finish-at-once rule (lighting times mean nothing to it)
         const Real r = *m.rho, e = *m.e;
-        const Real p = eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, e);
+        const Real p =
+            eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, e, ff.equilibrium);
         f(i, j, k) =
             mmax(update_burn_fraction(b, f0, t, tl(i, j, k), r), forest_fire_step(ff, f0, p, dt));
         continue;
@@ -208,7 +209,8 @@ void Burn::update(const Field3& rho, double dt) {
     Kokkos::parallel_for(
         "burn::fraction", mesh_.cells(Region::Owned), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real f0 = f(i, j, k), r = rho(i, j, k), ei = e(i, j, k);
-          const Real p = eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, ei);
+          const Real p = eos::he_pressure_mixed_cut(ff.unreacted, ff.products, ff.e0, f0, r, ei,
+                                                    ff.equilibrium);
           f(i, j, k) =
               mmax(update_burn_fraction(b, f0, t, tl(i, j, k), r), forest_fire_step(ff, f0, p, h));
         });

@@ -48,6 +48,9 @@ struct BurnSetup {
   bool mixed = false;
   eos::Eos unreacted;
   Real e0 = 0;  // unreacted energy origin, cm^2/us^2 (E0 / rho0 of the products)
+  // mixed: the two phases at one pressure (reactive.hpp he_equilibrium, burn.closure:
+  // pressure_equilibrium) instead of both at the cell's (rho, e)
+  bool equilibrium = false;
   // Forest Fire (forest_fire.hpp): F also grows at the rate R(p) of the explosive's pressure;
   // needs the unreacted EOS (mixed), whose Hugoniot and the products' EOS `ff` carries.
   bool forest_fire = false;

@@ -214,12 +214,13 @@ void Hydro::equation_of_state(const Field3& rho, const Field3& e, const Field3& 
     // an explosive with an unreacted EOS: p and c of the two phases at frozen F (reactive.hpp)
     const auto un = reactive_->unreacted;
     const Real e0 = reactive_->e0;
+    const bool eq = reactive_->equilibrium;
     auto f = reactive_->fraction;
     Kokkos::parallel_for(
         "eos::pressure_sound_speed", mesh_.cells(Region::All), KOKKOS_LAMBDA(int i, int j, int k) {
           const Real fi = f(i, j, k), r = rho(i, j, k), ei = e(i, j, k);
-          p(i, j, k) = eos::he_pressure_mixed_cut(un, eos, e0, fi, r, ei);
-          c(i, j, k) = eos::he_sound_speed_mixed(un, eos, e0, fi, r, ei);
+          p(i, j, k) = eos::he_pressure_mixed_cut(un, eos, e0, fi, r, ei, eq);
+          c(i, j, k) = eos::he_sound_speed_mixed(un, eos, e0, fi, r, ei, eq);
         });
     for (const Module* m : modules()) m->after_eos(rho, e, p, c);
     return;

@@ -400,11 +400,12 @@ Health Hydro::lagrange(Real dt, long cycle) {
     // an explosive with an unreacted EOS: the two phases at the half step (reactive.hpp)
     const auto un = reactive_->unreacted;
     const Real e0 = reactive_->e0;
+    const bool eq = reactive_->equilibrium;
     auto f = reactive_->fraction;
     predictor_kernel(
         mesh_, u, v, w, hf[0], hf[1], hf[2], rho, e, p, s_.qt, s_.qcol, ph, vol,
         KOKKOS_LAMBDA(Real r, Real en, int i, int j, int k) {
-          return eos::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en);
+          return eos::he_pressure_mixed_cut(un, eos, e0, f(i, j, k), r, en, eq);
         },
         start);
   } else {

@@ -39,6 +39,7 @@ struct BurnHook {
   bool mixed = false;
   eos::Eos unreacted;
   Real e0 = 0;
+  bool equilibrium = false;  // mixed: the pressure-equilibrium closure (reactive.hpp)
 };
 
 // The viscous work W of a mixed cell (point.hpp viscous_work: the tensor viscosity's work
@@ -54,7 +55,7 @@ struct BurnHook {
 
 BurnHook burn_hook(const eos::Reactive* r) {
   if (!r) return {};
-  return {r->material, r->fraction, r->d_cj, r->mixed, r->unreacted, r->e0};
+  return {r->material, r->fraction, r->d_cj, r->mixed, r->unreacted, r->e0, r->equilibrium};
 }
 
 // The for_cells bodies of the multi-material kernels below (functors at namespace scope, not
@@ -77,8 +78,10 @@ struct MixedEos {
       Real pm, cm;
       if (bh.mixed && m.m == bh.material) {
         const Real f = bh.f(i, j, k);
-        pm = eos::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
-        cm = eos::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e);
+        pm = eos::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e,
+                                        bh.equilibrium);
+        cm = eos::he_sound_speed_mixed(bh.unreacted, mats.eos[m.m], bh.e0, f, *m.rho, *m.e,
+                                       bh.equilibrium);
         unburnt = f < 1;
       } else {
         pm = mats.eos[m.m].pressure_cut(*m.rho, *m.e);
@@ -137,7 +140,7 @@ struct MixedPredictor {
       Real pm;
       if (bh.mixed && m.m == bh.material) {
         pm = eos::he_pressure_mixed_cut(bh.unreacted, mats.eos[m.m], bh.e0, bh.f(i, j, k),
-                                        mass / v_half, e_half);
+                                        mass / v_half, e_half, bh.equilibrium);
       } else {
         pm = mats.eos[m.m].pressure_cut(mass / v_half, e_half);
         if (m.m == bh.material) pm *= bh.f(i, j, k);
@@ -195,8 +198,9 @@ struct MixedCorrector {
           c2 = eq.sound_speed2(r, en);
         } else if (bh.mixed) {
           const Real f = bh.f(i, j, k);
-          ps = eos::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en);
-          c2 = eos::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
+          ps = eos::he_pressure_mixed(bh.unreacted, eq, bh.e0, f, r, en, bh.equilibrium);
+          c2 = bh.equilibrium ? eos::he_sound_speed2_equilibrium(bh.unreacted, eq, bh.e0, f, r, en)
+                              : eos::he_sound_speed2_mixed(bh.unreacted, eq, bh.e0, f, r, en);
         } else {
           const Real f = bh.f(i, j, k);
           ps = eos::he_pressure(eq, f, r, en);

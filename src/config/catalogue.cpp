@@ -291,6 +291,8 @@ const std::map<std::string, std::string>& key_notes() {
       {"materials[].burn.ramp_cells", "programmed burn's ramp, in largest cell edges"},
       {"materials[].burn.programmed", "programmed burn from lighting times"},
       {"materials[].burn.volume_burn", "CJ volume burn"},
+      {"materials[].burn.closure",
+       "with `unreacted`: both phases at the cell's state, or at one pressure (docs/numerics.md)"},
       {"materials[].burn.forest_fire",
        "Forest Fire reactive burn from a Pop plot (needs `unreacted`)"},
       {"materials[].burn.forest_fire.pop_plot",

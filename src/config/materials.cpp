@@ -144,7 +144,7 @@ void read_forest_fire(const DeckNode& n, BurnSpec& b) {
 // forest_fire: {pop_plot: <name>} | {a: .., b: ..}}.
 void read_burn(const DeckNode& n, MaterialSpec& spec) {
   n.expect_keys({"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed",
-                 "volume_burn", "unreacted", "forest_fire"});
+                 "volume_burn", "unreacted", "forest_fire", "closure"});
   BurnSpec& b = spec.burn;
   b.on = true;
   const bool jwl = spec.eos == "jwl";
@@ -186,6 +186,10 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
           "e0 = E0 / rho0)");
     b.unreacted = lib;
     b.unreacted_e0 = spec.params.at("E0") / spec.rho0;
+    b.equilibrium = n.get_choice(
+        "closure", Choices<bool>{{"shared_state", false}, {"pressure_equilibrium", true}}, false);
+  } else if (n.has("closure")) {
+    n.child("closure").fail("closure needs the unreacted solid's EOS ('unreacted')");
   } else if (b.forest_fire) {
     n.child("forest_fire")
         .fail(

@@ -43,6 +43,9 @@ struct BurnSpec {
   // e0 = E0 / rho0 of the JWL products (kernels/burn/burn.hpp he_pressure_mixed).
   std::string unreacted;
   double unreacted_e0 = 0;  // cm^2/us^2
+  // closure: pressure_equilibrium puts the two phases at one pressure (kernels/eos/reactive.hpp
+  // he_equilibrium); shared_state (the default) both at the cell's (rho, e)
+  bool equilibrium = false;
   // Forest Fire (kernels/burn/forest_fire.hpp): the Pop plot log10(x*/cm) = pop_a + pop_b
   // log10(P/Mbar), from the cited table (pop_plot: its name) or given.
   bool forest_fire = false;

@@ -62,6 +62,7 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
     b.mixed = true;
     b.unreacted = materials::make_eos(*materials::find_material(bs.unreacted));
     b.e0 = Real(bs.unreacted_e0);
+    b.equilibrium = bs.equilibrium;
     if (bs.forest_fire) {
       const materials::MaterialData& u = *materials::find_material(bs.unreacted);
       b.forest_fire = true;
@@ -73,6 +74,7 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
       b.ff.p_max = b.p_cj;
       b.ff.unreacted = b.unreacted;
       b.ff.products = material_eos(m, 0.0);
+      b.ff.equilibrium = b.equilibrium;
     }
   }
   for (const DetonatorSpec& d : bs.detonators) {
