@@ -336,6 +336,26 @@ TEST(Halo, ThinBlocks) {
     }
 }
 
+TEST(Halo, QuasiOneDimensionalBlocks) {
+  // Blocks long along one axis and a few cells across the other two (a 1-D run's mesh): on a
+  // host backend the one-launch fill of a block with no neighbour rank runs its columns along
+  // the long axis there (src/mesh/halo.cpp, column_axis), and along z otherwise. (One rank:
+  // with more, the long axis is split and the per-axis exchange, checked above, runs instead.)
+  if (world_size() > 1) GTEST_SKIP() << "the one-launch fill is one rank's: test_halo_np1";
+  const std::vector<Bc> bcs{{{{{kR, kR}}, {{kP, kP}}, {{kP, kP}}}},
+                            {{{{kR, kO}}, {{kO, kR}}, {{kR, kR}}}},
+                            {{{{kO, kR}}, {{kP, kP}}, {{kR, kO}}}}};
+  // (three cells across a reflective axis: with two, a node field's second mirrored ghost
+  // layer is the opposite wall node, which the halo reads as the zero it is and the definitions
+  // here do not)
+  const std::vector<std::array<int, 3>> sizes{{{40, 3, 3}}, {{3, 40, 3}}, {{3, 3, 40}},
+                                              {{33, 3, 4}}, {{3, 29, 3}}, {{12, 5, 4}}};
+  for (const auto& bc : bcs)
+    for (const auto& n : sizes) check_mesh(spec_of(n, bc), kAllLayouts, kParities);
+  // a 1-D deck's mesh: two cells across periodic y and z
+  check_mesh(spec_of({{40, 2, 2}}, bcs[0]), kAllLayouts, kParities);
+}
+
 TEST(Halo, ReusesBuffersAndRepeats) {
   // Growing and shrinking field counts on one Halo, and a second exchange of the same fields
   // leaves them as they were.
