@@ -302,6 +302,18 @@ TEST(Halo, SeveralFieldsInOneExchange) {
   }
 }
 
+TEST(Halo, MoreFieldsThanOneLaunchTakes) {
+  // Eleven fields, every parity (an exchange takes up to 8 fields a launch: two batches), on
+  // blocks of every shape, walls and periodic axes mixed.
+  std::vector<FieldDef> eleven;
+  for (int id = 0; id < 11; ++id) eleven.push_back(kParities[id % 4][0]);
+  for (int id = 0; id < 11; ++id) eleven[id].id = id;
+  const Bc bc{{{{kR, kO}}, {{kP, kP}}, {{kR, kR}}}};
+  for (const auto& n : kSizes) check_mesh(spec_of(n, bc), kAllLayouts, {eleven});
+  check_mesh(spec_of({{40, 3, 3}}, bc), kAllLayouts, {eleven});
+  check_mesh(spec_of({{3, 40, 3}}, bc), kAllLayouts, {eleven});
+}
+
 TEST(Halo, ReflectiveWithParity) {
   const Bc bc{{{{kR, kR}}, {{kR, kR}}, {{kR, kR}}}};
   for (const auto& n : kSizes) check_mesh(spec_of(n, bc), kAllLayouts, kParities);
