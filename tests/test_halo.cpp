@@ -302,6 +302,18 @@ TEST(Halo, SeveralFieldsInOneExchange) {
   }
 }
 
+TEST(Halo, MoreFieldsThanOneLaunchTakes) {
+  // Eleven fields, every parity (an exchange takes up to 8 fields a launch: two batches), on
+  // blocks of every shape, walls and periodic axes mixed.
+  std::vector<FieldDef> eleven;
+  for (int id = 0; id < 11; ++id) eleven.push_back(kParities[id % 4][0]);
+  for (int id = 0; id < 11; ++id) eleven[id].id = id;
+  const Bc bc{{{{kR, kO}}, {{kP, kP}}, {{kR, kR}}}};
+  for (const auto& n : kSizes) check_mesh(spec_of(n, bc), kAllLayouts, {eleven});
+  check_mesh(spec_of({{40, 3, 3}}, bc), kAllLayouts, {eleven});
+  check_mesh(spec_of({{3, 40, 3}}, bc), kAllLayouts, {eleven});
+}
+
 TEST(Halo, ReflectiveWithParity) {
   const Bc bc{{{{kR, kR}}, {{kR, kR}}, {{kR, kR}}}};
   for (const auto& n : kSizes) check_mesh(spec_of(n, bc), kAllLayouts, kParities);
@@ -334,6 +346,26 @@ TEST(Halo, ThinBlocks) {
       ranks[d] = np;
       check_mesh(spec_of(cells, bc, ranks), {kCell, kNode}, kParities);
     }
+}
+
+TEST(Halo, QuasiOneDimensionalBlocks) {
+  // Blocks long along one axis and a few cells across the other two (a 1-D run's mesh): on a
+  // host backend the one-launch fill of a block with no neighbour rank runs its columns along
+  // the long axis there (src/mesh/halo.cpp, column_axis), and along z otherwise. (One rank:
+  // with more, the long axis is split and the per-axis exchange, checked above, runs instead.)
+  if (world_size() > 1) GTEST_SKIP() << "the one-launch fill is one rank's: test_halo_np1";
+  const std::vector<Bc> bcs{{{{{kR, kR}}, {{kP, kP}}, {{kP, kP}}}},
+                            {{{{kR, kO}}, {{kO, kR}}, {{kR, kR}}}},
+                            {{{{kO, kR}}, {{kP, kP}}, {{kR, kO}}}}};
+  // (three cells across a reflective axis: with two, a node field's second mirrored ghost
+  // layer is the opposite wall node, which the halo reads as the zero it is and the definitions
+  // here do not)
+  const std::vector<std::array<int, 3>> sizes{{{40, 3, 3}}, {{3, 40, 3}}, {{3, 3, 40}},
+                                              {{33, 3, 4}}, {{3, 29, 3}}, {{12, 5, 4}}};
+  for (const auto& bc : bcs)
+    for (const auto& n : sizes) check_mesh(spec_of(n, bc), kAllLayouts, kParities);
+  // a 1-D deck's mesh: two cells across periodic y and z
+  check_mesh(spec_of({{40, 2, 2}}, bcs[0]), kAllLayouts, kParities);
 }
 
 TEST(Halo, ReusesBuffersAndRepeats) {

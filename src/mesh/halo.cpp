@@ -368,6 +368,160 @@ struct Local {
   }
 };
 
+// The same exchange for a block thin across axis L (x or y): a quasi-1-D run's mesh, at most
+// kThin points along the two other axes (column_axis()). There Local's z columns are a few
+// points long and 6 (N + 4) of them for an N x 2 x 2 block, most of its time spent per column;
+// here one iteration per layer c along L fills the ghosts and walls of that layer's plane of
+// the two other axes (A < B; contiguous in memory), from tables of the plane's maps found once
+// on the host. It writes what Local writes, bit for bit: per point and field the same factors
+// (+-1) composed in axis order, those of the plane's axes before L (fac, zero), then L's, then
+// those after L (post, post_zero).
+constexpr int kThin = 2 * Mesh::ng + 5;  // up to 4 owned cells, node-centred fields included
+template <int L>
+struct LocalThin {
+  static_assert(L == 0 || L == 1, "halo: a thin block's long axis is x or y");
+  static constexpr int A = L == 0 ? 1 : 0;  // the plane's axes
+  static constexpr int B = 2;
+  static constexpr int kPlane = kThin * kThin;
+  Local m;  // the three axes' plans and maps
+  // Every point (u, v) of the plane: its source and, per field, the factors of the plane's axes
+  // before and after L (for the ghost and wall layers along L).
+  struct PlanePoint {
+    int u = 0, v = 0, su = 0, sv = 0;
+    bool ghost = false;
+    Kokkos::Array<Real, kMaxFields> fac, post;
+    Kokkos::Array<unsigned char, kMaxFields> zero, post_zero;
+  };
+  Kokkos::Array<PlanePoint, kPlane> pp;
+  int npp = 0;
+  // What a layer owned along L and on no wall takes, per field q: the points [first_copy[q],
+  // first_copy[q + 1]) of `copy` mult x f(c, src), those of `zero` the value given (mult x 0);
+  // offsets in the layer (every field of an exchange has the same strides).
+  struct Copy {
+    int dst = 0, src = 0;
+    Real mult = 1;
+  };
+  Kokkos::Array<Copy, kMaxFields * kPlane> copy, zero;
+  Kokkos::Array<int, kMaxFields + 1> first_copy, first_zero;
+  long stride_l = 0;  // the layers' stride
+  void plan_plane() {
+    const int n = m.a[0].n;
+    const Field3& f0 = m.a[0].f[0];
+    stride_l = long(f0.stride(L));
+    auto offset = [&](int u, int v) { return int(u * f0.stride(A) + v * f0.stride(B)); };
+    npp = 0;
+    for (int u = 0; u < m.ext[A]; ++u)
+      for (int v = 0; v < m.ext[B]; ++v) {
+        PlanePoint& p = pp[npp++];
+        bool gu, gv, mu, mv;
+        p.u = u;
+        p.v = v;
+        p.su = m.source(A, u, gu, mu);
+        p.sv = m.source(B, v, gv, mv);
+        p.ghost = gu || gv;
+        for (int q = 0; q < n; ++q) {
+          p.fac[q] = p.post[q] = 1;
+          p.zero[q] = p.post_zero[q] = false;
+          Real& sa = A < L ? p.fac[q] : p.post[q];
+          unsigned char& za = A < L ? p.zero[q] : p.post_zero[q];
+          if (m.zeroed(A, p.su, q)) za = true, sa = 1;
+          if (mu) sa *= m.a[A].sign[q];
+          if (m.zeroed(B, p.sv, q)) p.post_zero[q] = true, p.post[q] = 1;
+          if (mv) p.post[q] *= m.a[B].sign[q];
+        }
+      }
+    int nc = 0, nz = 0;
+    for (int q = 0; q < n; ++q) {
+      first_copy[q] = nc;
+      first_zero[q] = nz;
+      for (int t = 0; t < npp; ++t) {
+        // in a layer c owned along L and no wall: no factor of L, so the value is
+        // (fac x post) x f(c, su, sv), or post x 0 where an axis after L is zeroed, or
+        // fac x 0 where one before it is; nothing where (u, v) is owned and no wall
+        const PlanePoint& p = pp[t];
+        const Real mult = p.post_zero[q] ? p.post[q] : p.fac[q] * p.post[q];
+        if (p.zero[q] || p.post_zero[q])
+          zero[nz++] = Copy{offset(p.u, p.v), 0, mult * Real(0)};
+        else if (p.ghost)
+          copy[nc++] = Copy{offset(p.u, p.v), offset(p.su, p.sv), mult};
+      }
+    }
+    first_copy[n] = nc;
+    first_zero[n] = nz;
+  }
+  // Whether every field has field 0's strides (the offsets' premise).
+  bool same_strides() const {
+    const Field3& f0 = m.a[0].f[0];
+    for (int q = 1; q < m.a[0].n; ++q)
+      for (int d = 0; d < 3; ++d)
+        if (m.a[0].f[q].stride(d) != f0.stride(d)) return false;
+    return true;
+  }
+  KOKKOS_FORCEINLINE_FUNCTION static Real& at(const Field3& f, int c, int u, int v) {
+    if constexpr (L == 0)
+      return f(c, u, v);
+    else
+      return f(u, c, v);
+  }
+  KOKKOS_INLINE_FUNCTION void operator()(int c) const {
+    bool gc, mc;
+    const int sc = m.source(L, c, gc, mc);
+    const int n = m.a[0].n;
+    if (!gc && !m.wall(L, c)) {
+      // owned along L, no wall: the plane's ghosts and walls from the tables
+      for (int q = 0; q < n; ++q) {
+        Real* const b = m.a[0].f[q].data() + c * stride_l;
+        for (int t = first_zero[q]; t < first_zero[q + 1]; ++t) b[zero[t].dst] = zero[t].mult;
+        for (int t = first_copy[q]; t < first_copy[q + 1]; ++t)
+          b[copy[t].dst] = copy[t].mult * b[copy[t].src];
+      }
+      return;
+    }
+    // a ghost or wall layer along L: every point of its plane, the factors composed
+    for (int q = 0; q < n; ++q) {
+      const Field3& f = m.a[0].f[q];
+      const bool zc = m.zeroed(L, sc, q);
+      for (int t = 0; t < npp; ++t) {
+        const PlanePoint& p = pp[t];
+        const bool any = gc || p.ghost;
+        Real sgn = p.fac[q];
+        bool z = p.zero[q];
+        if (zc) z = true, sgn = 1;
+        if (mc) sgn *= m.a[L].sign[q];
+        if (p.post_zero[q])
+          z = true, sgn = p.post[q];
+        else
+          sgn *= p.post[q];
+        if (z)
+          at(f, c, p.u, p.v) = sgn * Real(0);
+        else if (any)
+          at(f, c, p.u, p.v) = sgn * at(f, sc, p.su, p.sv);
+      }
+    }
+  }
+};
+
+// The long axis of a block thin across the two others (x or y, longer than z, the others at
+// most kThin points); else 2: Local's z columns.
+[[maybe_unused]] int column_axis(const int ext[3]) {
+  if (ext[2] > kThin) return 2;
+  if (ext[1] <= kThin && ext[0] > ext[2]) return 0;
+  if (ext[0] <= kThin && ext[1] > ext[2]) return 1;
+  return 2;
+}
+
+// Fills a thin block's ghosts (LocalThin) with long axis L, the plans made in l; false (and
+// nothing done) where its fields' strides differ.
+template <int L>
+bool thin_fill(const Local& l) {
+  LocalThin<L> t;
+  t.m = l;
+  if (!t.same_strides()) return false;
+  t.plan_plane();
+  Kokkos::parallel_for("halo::fill", Policy1(0, l.ext[L]), t);
+  return true;
+}
+
 // The bytes a periodic axis held by one rank copies in place: what its two messages to itself
 // would carry (bytes_sent counts them, so a count does not depend on how the copy is done).
 double self_bytes(const AxisPlan& p, int nfields) {
@@ -387,6 +541,28 @@ bool all_local(const Mesh& m) {
 
 MPI_Datatype mpi_real() {
   return sizeof(Real) == sizeof(double) ? MPI_DOUBLE : MPI_FLOAT;
+}
+
+// The one-launch exchange (no neighbour rank) of fields first .. first + kMaxFields - 1 of one
+// layout; returns the bytes a periodic axis held alone counts (self_bytes).
+double fill_local(const Mesh& mesh, const std::vector<HaloField>& fields, std::size_t first) {
+  Local l;
+  double bytes = 0;
+  for (int d = 0; d < 3; ++d) {
+    l.a[d] = plan_axis(mesh, fields, first, d);
+    l.ext[d] = mesh.extent(fields[0].along(d), d);
+    bytes += self_bytes(l.a[d], l.a[d].n);
+  }
+#if !(defined(KOKKOS_ENABLE_CUDA) || defined(KOKKOS_ENABLE_HIP) || defined(KOKKOS_ENABLE_SYCL))
+  // (host backends: a thin block along its long axis)
+  const int c = column_axis(l.ext);
+  if (c != 2 && (c == 0 ? thin_fill<0>(l) : thin_fill<1>(l))) return bytes;
+#endif
+  l.plan_columns();
+  Kokkos::parallel_for(
+      "halo::fill", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {l.ext[0], l.ext[1]}),
+      l);
+  return bytes;
 }
 
 }  // namespace
@@ -466,17 +642,10 @@ void Halo::exchange(const std::vector<HaloField>& fields) {
   for (const auto& f : fields)
     if (f.centering != fields[0].centering || f.face_axis != fields[0].face_axis)
       throw RunError("halo: one exchange takes fields of one layout");
-  if (all_local(mesh_) && fields.size() <= std::size_t(kMaxFields)) {
-    Local l;
-    for (int d = 0; d < 3; ++d) {
-      l.a[d] = plan_axis(mesh_, fields, 0, d);
-      l.ext[d] = mesh_.extent(fields[0].along(d), d);
-      bytes_sent_ += self_bytes(l.a[d], int(fields.size()));
-    }
-    l.plan_columns();
-    Kokkos::parallel_for(
-        "halo::fill",
-        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>({0, 0}, {l.ext[0], l.ext[1]}), l);
+  if (all_local(mesh_)) {
+    // one launch per kMaxFields fields
+    for (std::size_t first = 0; first < fields.size(); first += kMaxFields)
+      bytes_sent_ += fill_local(mesh_, fields, first);
     return;
   }
   for (int d = 0; d < 3; ++d) exchange_axis(fields, d);

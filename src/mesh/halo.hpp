@@ -8,7 +8,7 @@
 // Buffers are packed by Kokkos kernels, one message per neighbour per axis for all fields.
 // Launches: a block with no neighbour rank (every side a physical boundary or a periodic axis
 // it holds alone) fills every ghost of every field of an exchange, walls included, in one
-// launch; otherwise, per axis, one pack kernel for both sides (where another rank neighbours)
+// launch per 8 fields; otherwise, per axis, one pack kernel for both sides (where another rank neighbours)
 // and one fill kernel for every ghost layer of both sides of every field (up to 8 fields a
 // launch): what a neighbour sent, the mirror or copy of a physical boundary, the zero of a
 // reflective wall node, or the opposite side of the block itself (periodic, no message).
