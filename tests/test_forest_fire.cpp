@@ -117,7 +117,7 @@ TEST(MixtureClosure, PressureEquilibriumSharesOnePressureAndTheCellVolume) {
   const eos::Eos &u = ff.unreacted, &pr = ff.products;
   for (double p_in : {0.02, 0.06, 0.2}) {
     const burn::HugoniotPoint h = burn::unreacted_hugoniot(ff, p_in);
-    for (double rho : {h.rho, 1.1 * h.rho}) {
+    for (double rho : {double(h.rho), 1.1 * h.rho}) {
       const double e = h.e;
       EXPECT_EQ(eos::he_equilibrium(u, pr, ff.e0, 0.0, rho, e).p, u.pressure(rho, e - ff.e0));
       EXPECT_EQ(eos::he_equilibrium(u, pr, ff.e0, 1.0, rho, e).p, pr.pressure(rho, e));
