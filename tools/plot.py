@@ -8,6 +8,7 @@ directory. The tools stay importable and runnable on their own (tools/<name>.py)
     python3 tools/plot.py interfaces OUTPUT_DIR [--times 0 10 60] [--plane y=0] [--mode contour]
     python3 tools/plot.py tip     OUTPUT_DIR [--charges both|top|bottom]
     python3 tools/plot.py jet     OUTPUT_DIR [--axis-z 1.27]
+    python3 tools/plot.py panels  OUT.png DUMP.h5 [DUMP.h5 ...] [--fields F,G] [--z Z] [--log F]
 
 lineout, slice: the run's last dump, or the one chosen with --dump FILE|first|last|CYCLE or
 --time T (the dump nearest T); the PNG goes to OUTPUT_DIR/<scene>_lineout.png and
@@ -15,7 +16,8 @@ OUTPUT_DIR/<scene>_<FIELD>.png unless -o PATH. history: a directory means its ne
 a run's log with `build/minipagosa DECK -o DIR | tee DIR/run.log`). interfaces: the materials on
 a cut plane at given times (tools/render_interfaces.py). tip: the perforator's jets against the
 carrier, casing and rock (tools/perforator_check.py: JSON and Markdown). jet: one charge's jet
-tip and fast copper per dump (tools/jet_profile.py). `python3 tools/plot.py SUBCOMMAND --help`
+tip and fast copper per dump (tools/jet_profile.py). panels: z-slices of several dumps, a row
+per field, the interfaces drawn over them (tools/plot_panels.py). `python3 tools/plot.py SUBCOMMAND --help`
 lists each tool's own options.
 """
 import glob
@@ -36,6 +38,7 @@ TOOLS = {
     "interfaces": "render_interfaces",
     "tip": "perforator_check",
     "jet": "jet_profile",
+    "panels": "plot_panels",
 }
 
 
