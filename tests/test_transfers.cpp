@@ -68,20 +68,17 @@ void on_reduce_end(uint64_t) {}
 struct CopyCounter {
   CopyCounter() {
     copies() = Copies{};
-    Kokkos::Tools::Experimental::set_begin_deep_copy_callback(on_copy);
-    Kokkos::Tools::Experimental::set_end_deep_copy_callback(on_copy_end);
-    Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(on_reduce);
-    Kokkos::Tools::Experimental::set_end_parallel_reduce_callback(on_reduce_end);
-    Kokkos::Tools::Experimental::set_begin_parallel_scan_callback(on_reduce);
-    Kokkos::Tools::Experimental::set_end_parallel_scan_callback(on_reduce_end);
+    hook(true);
   }
-  ~CopyCounter() {
-    Kokkos::Tools::Experimental::set_begin_deep_copy_callback(nullptr);
-    Kokkos::Tools::Experimental::set_end_deep_copy_callback(nullptr);
-    Kokkos::Tools::Experimental::set_begin_parallel_reduce_callback(nullptr);
-    Kokkos::Tools::Experimental::set_end_parallel_reduce_callback(nullptr);
-    Kokkos::Tools::Experimental::set_begin_parallel_scan_callback(nullptr);
-    Kokkos::Tools::Experimental::set_end_parallel_scan_callback(nullptr);
+  ~CopyCounter() { hook(false); }
+  static void hook(bool on) {
+    namespace T = Kokkos::Tools::Experimental;
+    T::set_begin_deep_copy_callback(on ? on_copy : nullptr);
+    T::set_end_deep_copy_callback(on ? on_copy_end : nullptr);
+    T::set_begin_parallel_reduce_callback(on ? on_reduce : nullptr);
+    T::set_end_parallel_reduce_callback(on ? on_reduce_end : nullptr);
+    T::set_begin_parallel_scan_callback(on ? on_reduce : nullptr);
+    T::set_end_parallel_scan_callback(on ? on_reduce_end : nullptr);
   }
 };
 
