@@ -22,6 +22,7 @@
 #include "driver/simulation.hpp"
 #include "io/checkpoint.hpp"
 #include "io/log.hpp"
+#include "mesh/halo.hpp"
 
 namespace mp {
 
@@ -235,6 +236,7 @@ int run(const CommandLine& cl) {
              std::to_string(ExecSpace().concurrency()) +
              " threads per rank, Real = " + (sizeof(Real) == 8 ? "double" : "float") +
              (openmp_binding().empty() ? std::string() : "; " + openmp_binding()));
+    if (nranks > 1) log_line("  mpi messages: " + message_path());
     log_line("  memory estimate: " + estimate.text() + " per rank");
     for (const auto& m : sim.modules()) log_line("  module " + m);
     if (restart_path.empty())

@@ -1,5 +1,12 @@
 #include "mesh/halo.hpp"
 
+#include <cstdlib>
+#include <utility>
+
+#if __has_include(<mpi-ext.h>)
+#include <mpi-ext.h>  // Open MPI: MPIX_CUDA_AWARE_SUPPORT, MPIX_Query_cuda_support
+#endif
+
 #include "core/axis.hpp"
 #include "core/error.hpp"
 #include "core/profiling.hpp"
@@ -567,68 +574,126 @@ double fill_local(const Mesh& mesh, const std::vector<HaloField>& fields, std::s
 
 }  // namespace
 
+namespace {
+
+// The bytes of a message as MPI sees them: the buffer itself where MPI may read and write it
+// (message_in_place), else a host staging array kept between exchanges (grown, never shrunk, so
+// that a cycle allocates nothing), copied from or to the buffer around the message.
+struct Staging {
+  std::vector<Real> send[2], recv[2];
+};
+Staging& staging() {
+  static Staging s;
+  return s;
+}
+
+using HostSlice = Kokkos::View<Real*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+
+Real* staged(std::vector<Real>& v, long n) {
+  if (long(v.size()) < n) v.resize(std::size_t(n));
+  return v.data();
+}
+
+// The first n values of b copied to the host array at h, and back.
+void to_host(Real* h, const Buffer& b, long n) {
+  Kokkos::deep_copy(HostSlice(h, std::size_t(n)), Kokkos::subview(b, std::make_pair(0L, n)));
+}
+void from_host(const Buffer& b, const Real* h, long n) {
+  Kokkos::deep_copy(Kokkos::subview(b, std::make_pair(0L, n)),
+                    HostSlice(const_cast<Real*>(h), std::size_t(n)));
+}
+
+}  // namespace
+
+bool message_in_place() {
+  static const bool in_place = [] {
+    const char* env = std::getenv("MINIPAGOSA_MPI_DEVICE_BUFFERS");
+    if (env && *env) return std::string(env) != "0";
+    if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) {
+      return true;
+    } else {
+#if defined(MPIX_CUDA_AWARE_SUPPORT) && MPIX_CUDA_AWARE_SUPPORT
+      return MPIX_Query_cuda_support() == 1;
+#else
+      return false;
+#endif
+    }
+  }();
+  return in_place;
+}
+
+std::string message_path() {
+  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible;
+  if (!message_in_place()) return "staged through host arrays";
+  return host ? "from the host buffers" : "from the device buffers (CUDA-aware MPI)";
+}
+
 double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buffer recv[2],
                         long count, int tag_base) {
-  Kokkos::fence();
-  // MPI works on host memory; on a host backend the mirrors are the device buffers.
-  typename Buffer::HostMirror hsend[2], hrecv[2];
+  Kokkos::fence();  // the pack kernel's values, before MPI or a copy reads them
+  const bool in_place = message_in_place();
+  Staging& st = staging();
+  Real* hsend[2] = {nullptr, nullptr};
+  Real* hrecv[2] = {nullptr, nullptr};
   MPI_Request req[4];
   int nreq = 0;
   double bytes = 0;
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
-    hsend[s] = Kokkos::create_mirror_view(send[s]);
-    hrecv[s] = Kokkos::create_mirror_view(recv[s]);
-    Kokkos::deep_copy(hsend[s], send[s]);
+    hsend[s] = in_place ? send[s].data() : staged(st.send[s], count);
+    hrecv[s] = in_place ? recv[s].data() : staged(st.recv[s], count);
+    if (!in_place) to_host(hsend[s], send[s], count);
   }
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
     // What arrives from side s was sent by that neighbour towards side 1-s: tag by the
     // sending side so a rank that is its own periodic neighbour pairs messages correctly.
-    MPI_CHECK(MPI_Irecv(hrecv[s].data(), int(count), mpi_real(), mesh.neighbor(d, s),
+    MPI_CHECK(MPI_Irecv(hrecv[s], int(count), mpi_real(), mesh.neighbor(d, s),
                         tag_base + 10 * d + 1 - s, mesh.comm(), &req[nreq++]));
   }
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
-    MPI_CHECK(MPI_Isend(hsend[s].data(), int(count), mpi_real(), mesh.neighbor(d, s),
+    MPI_CHECK(MPI_Isend(hsend[s], int(count), mpi_real(), mesh.neighbor(d, s),
                         tag_base + 10 * d + s, mesh.comm(), &req[nreq++]));
     bytes += double(count) * sizeof(Real);
   }
   MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
-  for (int s = 0; s < 2; ++s)
-    if (!mesh.physical_boundary(d, s)) Kokkos::deep_copy(recv[s], hrecv[s]);
+  if (!in_place)
+    for (int s = 0; s < 2; ++s)
+      if (!mesh.physical_boundary(d, s)) from_host(recv[s], hrecv[s], count);
   return bytes;
 }
 
 double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long send_count[2],
                       Buffer recv[2], int tag_base, const std::string& recv_label) {
   Kokkos::fence();
-  typename Buffer::HostMirror hsend[2];
+  const bool in_place = message_in_place();
+  Staging& st = staging();
   MPI_Request req[2];
   int nreq = 0;
   double bytes = 0;
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
-    hsend[s] = Kokkos::create_mirror_view(send[s]);
-    Kokkos::deep_copy(hsend[s], send[s]);
+    Real* h = in_place ? send[s].data() : staged(st.send[s], send_count[s]);
+    if (!in_place) to_host(h, send[s], send_count[s]);
     // tags as exchange_buffers': by the sending side
-    MPI_CHECK(MPI_Isend(hsend[s].data(), int(send_count[s]), mpi_real(), mesh.neighbor(d, s),
+    MPI_CHECK(MPI_Isend(h, int(send_count[s]), mpi_real(), mesh.neighbor(d, s),
                         tag_base + 10 * d + s, mesh.comm(), &req[nreq++]));
     bytes += double(send_count[s]) * sizeof(Real);
   }
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
     const int src = mesh.neighbor(d, s), tag = tag_base + 10 * d + 1 - s;
-    MPI_Status st;
-    MPI_CHECK(MPI_Probe(src, tag, mesh.comm(), &st));
+    MPI_Status status;
+    MPI_CHECK(MPI_Probe(src, tag, mesh.comm(), &status));
     int n = 0;
-    MPI_CHECK(MPI_Get_count(&st, mpi_real(), &n));
+    MPI_CHECK(MPI_Get_count(&status, mpi_real(), &n));
     if (long(recv[s].extent(0)) < n)
       recv[s] = Buffer(Kokkos::view_alloc(Kokkos::WithoutInitializing, recv_label),
                        std::max(n + n / 4, 1));
-    auto h = Kokkos::create_mirror_view(recv[s]);
-    MPI_CHECK(MPI_Recv(h.data(), n, mpi_real(), src, tag, mesh.comm(), MPI_STATUS_IGNORE));
-    Kokkos::deep_copy(recv[s], h);
+    Real* h = in_place ? recv[s].data() : staged(st.recv[s], n);
+    MPI_CHECK(MPI_Recv(h, n, mpi_real(), src, tag, mesh.comm(), MPI_STATUS_IGNORE));
+    if (!in_place) from_host(recv[s], h, n);
   }
   MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
   return bytes;

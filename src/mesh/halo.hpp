@@ -8,9 +8,9 @@
 // Buffers are packed by Kokkos kernels, one message per neighbour per axis for all fields.
 // Launches: a block with no neighbour rank (every side a physical boundary or a periodic axis
 // it holds alone) fills every ghost of every field of an exchange, walls included, in one
-// launch per 8 fields; otherwise, per axis, one pack kernel for both sides (where another rank neighbours)
-// and one fill kernel for every ghost layer of both sides of every field (up to 8 fields a
-// launch): what a neighbour sent, the mirror or copy of a physical boundary, the zero of a
+// launch per 8 fields; otherwise, per axis, one pack kernel for both sides (where another rank
+// neighbours) and one fill kernel for every ghost layer of both sides of every field (up to 8
+// fields a launch): what a neighbour sent, the mirror or copy of a physical boundary, the zero of a
 // reflective wall node, or the opposite side of the block itself (periodic, no message).
 // A single-material cycle at one rank: 11 fills (tests/test_launches.cpp); it was 93 launches
 // of one slab and one side each.
@@ -37,6 +37,16 @@ struct HaloField {
     return d == face_axis ? Centering::Node : Centering::Cell;
   }
 };
+
+// Messages go from and into the buffers themselves where MPI can address them: on a host
+// backend, and on a device backend when the MPI library is CUDA-aware (Open MPI's
+// MPIX_Query_cuda_support(), asked once). MINIPAGOSA_MPI_DEVICE_BUFFERS=1 asserts that it is
+// (another CUDA-aware MPI); =0 stages every message through host arrays kept between exchanges
+// (no allocation in a cycle), which a device backend does by itself with an MPI that is not,
+// and which the tests use to check the staged path on a host. message_path() says which, for
+// the run log.
+bool message_in_place();
+std::string message_path();
 
 // Sends send[s] (count values) to the neighbour rank on side s of axis d and receives recv[s]
 // from it, for each side that is not a physical boundary; tags start at tag_base so that
