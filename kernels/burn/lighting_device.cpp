@@ -247,7 +247,10 @@ struct Sweep {
     // the neighbours' parents: the earliest (Lazy Theta*'s assumed parent)
     double tmin = detail::kInfinity, smin[3] = {0, 0, 0};
     int nmin[3] = {0, 0, 0};
+    const LightingLabel* last = nullptr;  // the parent just weighed (neighbours share parents)
     lit_changed(i, j, k, g, [&](int di, int dj, int dk, const LightingLabel& l) {
+      if (last && same_parent(l, *last)) return;
+      last = &l;
       double s[3];
       const double cand = via(l, x, s);
       if (cand < tmin) {
