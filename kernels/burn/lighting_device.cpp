@@ -101,7 +101,6 @@ struct Sweep {
   Dets dets;
   Frame f;
   double d_cj;
-  bool flat;  // a 2-D grid (one cell in z): corners in the plane only
 
   // The time at x by the straight path from label l's parent, and that path's start s.
   KOKKOS_INLINE_FUNCTION double via(const LightingLabel& l, const double* x, double* s) const {
@@ -136,10 +135,10 @@ struct Sweep {
   // True when corner (i + oi, j + oj, k + ok) of global cell (i, j, k) touches an inert cell.
   KOKKOS_INLINE_FUNCTION bool corner_touches_inert(int i, int j, int k, int oi, int oj,
                                                    int ok) const {
-    for (int dk = flat ? 0 : -1; dk <= 0; ++dk)
+    for (int dk = -1; dk <= 0; ++dk)
       for (int dj = -1; dj <= 0; ++dj)
         for (int di = -1; di <= 0; ++di)
-          if (bits(i + oi + di, j + oj + dj, k + (flat ? 0 : ok + dk))) return true;
+          if (bits(i + oi + di, j + oj + dj, k + ok + dk)) return true;
     return false;
   }
   // The corners of inert cell blk as pivots reached straight from l's parent, for the cell at
@@ -147,16 +146,15 @@ struct Sweep {
   KOKKOS_INLINE_FUNCTION void blocker_corners(const LightingLabel& l, const int* blk,
                                               const double* x, const int* g,
                                               LightingLabel& best) const {
-    for (int ok = 0; ok <= (flat ? 0 : 1); ++ok)
+    for (int ok = 0; ok <= 1; ++ok)
       for (int oj = 0; oj <= 1; ++oj)
         for (int oi = 0; oi <= 1; ++oi) {
           // the explosive cell at this corner: the first found
           int e[3] = {-1, -1, -1};
-          for (int dk = flat ? 0 : -1; dk <= 0 && e[0] < 0; ++dk)
+          for (int dk = -1; dk <= 0 && e[0] < 0; ++dk)
             for (int dj = -1; dj <= 0 && e[0] < 0; ++dj)
               for (int di = -1; di <= 0 && e[0] < 0; ++di) {
-                const int a = blk[0] + oi + di, b = blk[1] + oj + dj,
-                          c = blk[2] + (flat ? 0 : ok + dk);
+                const int a = blk[0] + oi + di, b = blk[1] + oj + dj, c = blk[2] + ok + dk;
                 if (bits.in_grid(a, b, c) && bits.explosive(a, b, c)) {
                   e[0] = a;
                   e[1] = b;
@@ -168,7 +166,7 @@ struct Sweep {
           f.centre(e[0], e[1], e[2], xe);
           kx[0] = f.g.origin[0] + (blk[0] + oi) * f.g.h[0];
           kx[1] = f.g.origin[1] + (blk[1] + oj) * f.g.h[1];
-          kx[2] = flat ? xe[2] : f.g.origin[2] + (blk[2] + ok) * f.g.h[2];
+          kx[2] = f.g.origin[2] + (blk[2] + ok) * f.g.h[2];
           for (int ax = 0; ax < 3; ++ax) kx[ax] += kNudge * (xe[ax] - kx[ax]);
           const double tk = via(l, kx, s);
           const double cand = tk + detail::dist3(kx, x) / d_cj;
@@ -204,13 +202,13 @@ struct Sweep {
       if (cand < best.t) take_pivot(best, cand, xn, l.t);
       const double cand2 = via(l, x, s);
       if (cand2 < best.t && sees(s, x, g[0], g[1], g[2])) take(best, cand2, l);
-      for (int ok = 0; ok <= (flat ? 0 : 1); ++ok)
+      for (int ok = 0; ok <= 1; ++ok)
         for (int oj = 0; oj <= 1; ++oj)
           for (int oi = 0; oi <= 1; ++oi) {
             if (!corner_touches_inert(a, b, c, oi, oj, ok)) continue;
             double kx[3] = {f.g.origin[0] + (a + oi) * f.g.h[0],
                             f.g.origin[1] + (b + oj) * f.g.h[1],
-                            flat ? xn[2] : f.g.origin[2] + (c + ok) * f.g.h[2]};
+                            f.g.origin[2] + (c + ok) * f.g.h[2]};
             for (int ax = 0; ax < 3; ++ax) kx[ax] += kNudge * (xn[ax] - kx[ax]);
             double s3[3];
             const double tk = via(l, kx, s3);
@@ -458,7 +456,6 @@ LightingRun lighting_times_device(const Mesh& mesh, const LightingGrid& g,
   Labels nxt(Kokkos::view_alloc(Kokkos::WithoutInitializing, "burn::lighting_next"), ex[0], ex[1],
              ex[2]);
   Flags out("burn::lighting_out", ex[0], ex[1], ex[2]);
-  const bool flat = g.n[2] == 1;
   // every sweep changes a label somewhere or ends the loop; a path in cells is shorter than
   // this, with room for the corrections
   const long most = 16L * (long(g.n[0]) + g.n[1] + g.n[2]) + 64;
@@ -466,7 +463,7 @@ LightingRun lighting_times_device(const Mesh& mesh, const LightingGrid& g,
   for (;;) {
     long changed = 0;
     Kokkos::parallel_reduce("burn::lighting_sweep", mesh.cells(Region::Owned),
-                            Sweep{cur, nxt, chg, out, bits, dets, f, d_cj, flat}, changed);
+                            Sweep{cur, nxt, chg, out, bits, dets, f, d_cj}, changed);
     Kokkos::parallel_for("burn::lighting_commit", mesh.cells(Region::Owned), Commit{cur, nxt, out});
     std::swap(chg, out);
     exchange(mesh, cur, chg);

@@ -23,6 +23,9 @@
 // cell after it first got a time, which the host's Dijkstra closes once. In line of sight of a
 // detonator the times are the same bits (the same parent, the same formula).
 //
+// A mesh has at least two cells along every axis (its ghost layers), so the host construction's
+// 2-D case (one cell in z, corners in the plane) does not arise here.
+//
 // Memory: the labels (two copies, 48 B each) and two change flags per cell of the rank's block
 // (the mesh's cell extent, ghosts included), freed when the times are written; the line-of-sight
 // walk crosses rank boundaries, so every rank holds the explosive mask of the whole grid packed
