@@ -361,9 +361,10 @@ TEST(PerforatorJetPin, TopJetAt7UsOnZone01) {
 }
 
 // The charges' lighting times at zone 0.1 (300 x 30 x 50 cells) from the per-rank kernels (the
-// default) against the host reference construction (burn.lighting: host): every explosive cell
-// lit by both, the same cells unlit, and the times within 0.5 h/D (h = 0.1 cm; the bound of
-// tests/test_lighting_device.cpp's shadow; observed below), most of them the same bits.
+// default) against the host reference construction (burn.lighting: host): the same cells lit
+// (observed 4608, bound > 4000: the two charges' cells at least half explosive and their thin
+// neighbours), and the times within 0.25 h/D (h = 0.1 cm; tests/test_lighting_device.cpp's
+// shadow bound): observed 4535 cells the same bits, the other 73 within 0.118 h/D (0.0147 us).
 TEST(Perforator, LightingTimesOnTheDeviceMatchTheHostAtZone01) {
   std::vector<double> t[2];
   double d_cj = 0;
@@ -395,7 +396,7 @@ TEST(Perforator, LightingTimesOnTheDeviceMatchTheHostAtZone01) {
       "perforator zone 0.1: %zu cells, %ld lit, %ld the same bits, max |device - host| = "
       "%.3e us = %.4f h/D; %ld lit by one only\n",
       t[0].size(), lit, same, worst, worst / (h / d_cj), unlit_differ);
-  EXPECT_GT(lit, 10000);
+  EXPECT_GT(lit, 4000);
   EXPECT_EQ(unlit_differ, 0);
-  EXPECT_LE(worst, 0.5 * h / d_cj);
+  EXPECT_LE(worst, 0.25 * h / d_cj);
 }

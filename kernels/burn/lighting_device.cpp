@@ -385,6 +385,45 @@ void exchange(const Mesh& mesh, const Labels& lab, const Flags& chg) {
   for (int d = 0; d < 3; ++d) exchange_axis(mesh, lab, chg, d);
 }
 
+// The index along d of an explosive cell, or -1.
+struct Along {
+  ExplosiveBits bits;
+  Frame f;
+  int d;
+  KOKKOS_INLINE_FUNCTION int operator()(int i, int j, int k) const {
+    if (!bits.explosive(f.global(0, i), f.global(1, j), f.global(2, k))) return -1;
+    return d == 0 ? i : (d == 1 ? j : k);
+  }
+};
+
+// The smallest box of mesh indices that holds the rank's explosive cells (empty without any).
+Policy3 explosive_box(const Mesh& mesh, const ExplosiveBits& bits, const Frame& f) {
+  int lo[3], hi[3];
+  for (int d = 0; d < 3; ++d) {
+    int first = 0, last = 0;
+    const Along along{bits, f, d};
+    Kokkos::parallel_reduce(
+        "burn::lighting_box", mesh.cells(Region::Owned),
+        KOKKOS_LAMBDA(int i, int j, int k, int& a) {
+          const int v = along(i, j, k);
+          if (v >= 0 && v < a) a = v;
+        },
+        Kokkos::Min<int>(first));
+    Kokkos::parallel_reduce(
+        "burn::lighting_box", mesh.cells(Region::Owned),
+        KOKKOS_LAMBDA(int i, int j, int k, int& b) {
+          const int v = along(i, j, k);
+          if (v > b) b = v;
+        },
+        Kokkos::Max<int>(last));
+    lo[d] = first;
+    hi[d] = last + 1;
+  }
+  if (lo[0] >= hi[0])
+    return Policy3({Mesh::ng, Mesh::ng, Mesh::ng}, {Mesh::ng, Mesh::ng, Mesh::ng});
+  return Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]});
+}
+
 }  // namespace
 
 ExplosiveBits explosive_bits(const Mesh& mesh, const LightingGrid& g, const Field3* frac,
@@ -459,12 +498,15 @@ LightingRun lighting_times_device(const Mesh& mesh, const LightingGrid& g,
   // every sweep changes a label somewhere or ends the loop; a path in cells is shorter than
   // this, with room for the corrections
   const long most = 16L * (long(g.n[0]) + g.n[1] + g.n[2]) + 64;
+  // the sweeps visit the box of the rank's explosive cells (a charge in a large scene: a few
+  // thousand of its cells)
+  const Policy3 sweep_box = explosive_box(mesh, bits, f);
   LightingRun run;
   for (;;) {
     long changed = 0;
-    Kokkos::parallel_reduce("burn::lighting_sweep", mesh.cells(Region::Owned),
+    Kokkos::parallel_reduce("burn::lighting_sweep", sweep_box,
                             Sweep{cur, nxt, chg, out, bits, dets, f, d_cj}, changed);
-    Kokkos::parallel_for("burn::lighting_commit", mesh.cells(Region::Owned), Commit{cur, nxt, out});
+    Kokkos::parallel_for("burn::lighting_commit", sweep_box, Commit{cur, nxt, out});
     std::swap(chg, out);
     exchange(mesh, cur, chg);
     MPI_CHECK(MPI_Allreduce(MPI_IN_PLACE, &changed, 1, MPI_LONG, MPI_SUM, mesh.comm()));
