@@ -250,6 +250,31 @@ TEST(LightingDevice, OneTwoFourRanksTheSameBitsAQuarterOfTheArrays) {
   EXPECT_LE(four.peak_bytes, 0.32 * one.peak_bytes);
 }
 
+// A plane-wave lens and a line detonator (test_burn's LineAndPlaneDetonators) with no obstacle:
+// every cell in line of sight, so the host's bits.
+TEST(LightingDevice, LineAndPlaneDetonatorsAreTheHostsBits) {
+  const LightingGrid g = cube(24, 1.5);
+  const std::vector<std::uint8_t> mask(g.cells(), 1);
+  Detonator plane;
+  plane.kind = Detonator::Kind::Plane;
+  plane.a = {0, 0, -1.5};
+  plane.b = {0, 0, 2};
+  plane.t0 = 0.25;
+  Detonator line;
+  line.kind = Detonator::Kind::Line;
+  line.a = {-0.4, 0.1, 0.2};
+  line.b = {0.9, 0.3, 0.2};
+  line.t0 = 0.5;
+  const Device dev = device_times(g, mask, {plane, line}, 0.8, world_size());
+  if (world_rank() != 0) return;
+  const auto host = mp::burn::lighting_times(g, mask, {plane, line}, 0.8);
+  long differ = 0;
+  for (long q = 0; q < g.cells(); ++q) differ += dev.t[q] != host[q];
+  say("  plane + line, 24^3: %ld of %ld cells differ from the host (%d sweeps)\n", differ,
+      g.cells(), dev.sweeps);
+  EXPECT_EQ(differ, 0);
+}
+
 // Explosive cut off from the detonator stays unlit; a detonator away from every explosive cell
 // and a plane without a normal are refused with the host construction's words.
 TEST(LightingDevice, UnreachableAndMisplacedAsTheHost) {
