@@ -3,6 +3,11 @@
 // material (Huygens' construction: the front is the envelope of wavelets; the lighting time is
 // the length of the shortest path through explosive over D).
 //
+// This file: the reference construction (host code over the global grid, `materials[].burn.
+// lighting: host`) and the geometry it shares, device-ready, with the per-rank construction the
+// runs use by default (lighting_device.hpp: the same candidates as a label-correcting iteration
+// of Kokkos kernels; tests/test_lighting_device.cpp compares the two).
+//
 // Construction (host code, run once at set-up): an any-angle Dijkstra on the cell graph, Lazy
 // Theta* (A. Nash, S. Koenig, C. Tovey, "Lazy Theta*: Any-Angle Path Planning and Path Length
 // Analysis in 3D", AAAI 2010; Theta*: Nash, Daniel, Koenig, Felner, AAAI 2007). Each cell keeps
@@ -29,8 +34,8 @@
 //
 // Cost: one priority-queue pass, O(N log N), plus one line-of-sight walk (O(grid width)) per
 // cell, and a few dozen more per cell where the front bends (64^3 cells around a ball: about
-// 1 s on one core). Host-only for a start; on many ranks the integrator gathers the global
-// mask, computes the times once and keeps its own block.
+// 1 s on one core). On many ranks Burn::light gathers the global mask, every rank computes the
+// times of the whole grid and keeps its own block.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -43,8 +48,16 @@
 #include <vector>
 
 #include "burn/burn.hpp"
+#include "core/math.hpp"
 
 namespace mp::burn {
+
+// The grid as plain data for kernels (LightingGrid::box()).
+struct LightingBox {
+  int n[3];
+  double origin[3];
+  double h[3];
+};
 
 // Cell (i, j, k) spans origin + [i, i+1) h; its centre is origin + (i + 1/2) h. Cells are
 // numbered i + n[0] (j + n[1] k), x fastest. A 2-D grid is n[2] = 1.
@@ -60,6 +73,9 @@ struct LightingGrid {
             origin[2] + (k + 0.5) * h[2]};
   }
   double largest_edge() const { return std::max({h[0], h[1], h[2]}); }
+  LightingBox box() const {
+    return {{n[0], n[1], n[2]}, {origin[0], origin[1], origin[2]}, {h[0], h[1], h[2]}};
+  }
 };
 
 // Host bytes per global cell that the construction and its caller (Burn::light) hold at once,
@@ -98,53 +114,72 @@ namespace detail {
 
 using Vec = std::array<double, 3>;
 
-inline double dot(const Vec& u, const Vec& v) {
+// std::numeric_limits' infinity as a constant kernels may read (its function is host code to nvcc).
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// Device-ready forms of the geometry below (the host reference and the per-rank construction,
+// lighting_device.hpp, run the same operations, so the two agree bit for bit in line of sight).
+KOKKOS_INLINE_FUNCTION double dot3(const double* u, const double* v) {
   return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+}
+KOKKOS_INLINE_FUNCTION double dist3(const double* u, const double* v) {
+  const double w[3] = {u[0] - v[0], u[1] - v[1], u[2] - v[2]};
+  return MP_KOKKOS_MATH::sqrt(dot3(w, w));
+}
+// The point f of detonator (kind, a, b) nearest to x (see foot below).
+KOKKOS_INLINE_FUNCTION void foot3(Detonator::Kind kind, const double* a, const double* b,
+                                  const double* x, double* f) {
+  if (kind == Detonator::Kind::Line) {
+    const double ab[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+    const double xa[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+    const double len2 = dot3(ab, ab);
+    double s = len2 > 0 ? dot3(xa, ab) / len2 : 0;
+    s = s < 0.0 ? 0.0 : s;
+    s = s > 1.0 ? 1.0 : s;
+    for (int d = 0; d < 3; ++d) f[d] = a[d] + s * ab[d];
+  } else if (kind == Detonator::Kind::Plane) {
+    const double xa[3] = {x[0] - a[0], x[1] - a[1], x[2] - a[2]};
+    const double s = dot3(xa, b) / dot3(b, b);
+    for (int d = 0; d < 3; ++d) f[d] = x[d] - s * b[d];
+  } else {
+    for (int d = 0; d < 3; ++d) f[d] = a[d];
+  }
+}
+
+inline double dot(const Vec& u, const Vec& v) {
+  return dot3(u.data(), v.data());
 }
 inline Vec sub(const Vec& u, const Vec& v) {
   return {u[0] - v[0], u[1] - v[1], u[2] - v[2]};
 }
 inline double dist(const Vec& u, const Vec& v) {
-  return std::sqrt(dot(sub(u, v), sub(u, v)));
+  return dist3(u.data(), v.data());
 }
 
 // The point of the detonator nearest to x (where the front that reaches x straight starts).
 inline Vec foot(const Detonator& d, const Vec& x) {
-  switch (d.kind) {
-    case Detonator::Kind::Point:
-      return d.a;
-    case Detonator::Kind::Line: {
-      const Vec ab = sub(d.b, d.a);
-      const double len2 = dot(ab, ab);
-      double s = len2 > 0 ? dot(sub(x, d.a), ab) / len2 : 0;
-      s = std::min(1.0, std::max(0.0, s));
-      return {d.a[0] + s * ab[0], d.a[1] + s * ab[1], d.a[2] + s * ab[2]};
-    }
-    case Detonator::Kind::Plane: {
-      const double nn = dot(d.b, d.b);
-      const double s = dot(sub(x, d.a), d.b) / nn;
-      return {x[0] - s * d.b[0], x[1] - s * d.b[1], x[2] - s * d.b[2]};
-    }
-  }
-  return d.a;
+  Vec f;
+  foot3(d.kind, d.a.data(), d.b.data(), x.data(), f.data());
+  return f;
 }
 
 // True when the segment from point a to point p, which lies inside cell (bi, bj, bk), crosses
-// no inert cell.
+// no inert cell (inert(i, j, k): a cell of the grid that is not explosive; false outside it).
 // The cell containing a (a detonator on the surface of the explosive, or a pivot) is not
 // checked, nor is the end cell. Where the segment passes exactly through a cell edge or corner,
 // every cell touching it there must be explosive (a front does not squeeze through a point
 // contact of inert cells). Parts of the segment outside the grid block nothing.
-// *blocker (when given) receives the first inert cell met, walking from p toward a.
-inline bool visible(const LightingGrid& g, const std::vector<std::uint8_t>& explosive, const Vec& a,
-                    const Vec& p, int bi, int bj, int bk, long* blocker = nullptr) {
-  const Vec d = sub(a, p);
+// blocker (when not null) receives the first inert cell met (i, j, k), walking from p toward a.
+template <class Inert>
+KOKKOS_INLINE_FUNCTION bool sees(const LightingBox& g, const Inert& inert, const double* a,
+                                 const double* p, int bi, int bj, int bk, int* blocker) {
+  const double d[3] = {a[0] - p[0], a[1] - p[1], a[2] - p[2]};
   int c[3] = {bi, bj, bk};
   int step[3];
   double tmax[3], tdelta[3];
-  const double inf = std::numeric_limits<double>::infinity();
+  const double inf = kInfinity;
   for (int ax = 0; ax < 3; ++ax) {
-    const int cc = ax == 0 ? bi : (ax == 1 ? bj : bk);
+    const int cc = c[ax];
     if (d[ax] > 0) {
       step[ax] = 1;
       tdelta[ax] = g.h[ax] / d[ax];
@@ -162,16 +197,14 @@ inline bool visible(const LightingGrid& g, const std::vector<std::uint8_t>& expl
   // Relative tolerance for "the segment leaves through an edge or a corner" and "a lies on the
   // face": a few ulps of the segment parameter.
   constexpr double tie = 1e-12;
-  auto inert = [&](int i, int j, int k) {
-    if (i < 0 || j < 0 || k < 0 || i >= g.n[0] || j >= g.n[1] || k >= g.n[2]) return false;
-    return explosive[g.index(i, j, k)] == 0;
-  };
   bool first = true;
   while (true) {
-    const double tmin = std::min({tmax[0], tmax[1], tmax[2]});
+    double tmin = tmax[0] < tmax[1] ? tmax[0] : tmax[1];
+    tmin = tmax[2] < tmin ? tmax[2] : tmin;
     if (tmin >= 1 - tie) return true;  // a lies in the current cell
     if (!first && inert(c[0], c[1], c[2])) {
-      if (blocker) *blocker = g.index(c[0], c[1], c[2]);
+      if (blocker)
+        for (int q = 0; q < 3; ++q) blocker[q] = c[q];
       return false;
     }
     first = false;
@@ -185,7 +218,8 @@ inline bool visible(const LightingGrid& g, const std::vector<std::uint8_t>& expl
       for (int q = 0; q < nt; ++q)
         if (mask & (1 << q)) s[ties[q]] += step[ties[q]];
       if (inert(s[0], s[1], s[2])) {
-        if (blocker) *blocker = g.index(s[0], s[1], s[2]);
+        if (blocker)
+          for (int q = 0; q < 3; ++q) blocker[q] = s[q];
         return false;
       }
     }
@@ -196,6 +230,36 @@ inline bool visible(const LightingGrid& g, const std::vector<std::uint8_t>& expl
     if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[0] >= g.n[0] || c[1] >= g.n[1] || c[2] >= g.n[2])
       return true;
   }
+}
+
+// inert(i, j, k) of a global host mask (one byte a cell, LightingGrid order).
+struct HostInert {
+  const std::uint8_t* explosive;
+  int n[3];
+  KOKKOS_INLINE_FUNCTION bool operator()(int i, int j, int k) const {
+    if (i < 0 || j < 0 || k < 0 || i >= n[0] || j >= n[1] || k >= n[2]) return false;
+    return explosive[i + long(n[0]) * (j + long(n[1]) * k)] == 0;
+  }
+};
+
+// sees() on a host mask; *blocker (when given) receives the blocking cell's index.
+inline bool visible(const LightingGrid& g, const std::vector<std::uint8_t>& explosive, const Vec& a,
+                    const Vec& p, int bi, int bj, int bk, long* blocker = nullptr) {
+  const HostInert inert{explosive.data(), {g.n[0], g.n[1], g.n[2]}};
+  int b[3];
+  const bool v = sees(g.box(), inert, a.data(), p.data(), bi, bj, bk, blocker ? b : nullptr);
+  if (!v && blocker) *blocker = g.index(b[0], b[1], b[2]);
+  return v;
+}
+
+// The errors of a detonator that lights nothing and of a plane detonator without a normal.
+inline std::string misplaced(std::size_t q, const Detonator& det) {
+  return std::string("lighting_times: ") + to_string(det.kind) + " detonator " + std::to_string(q) +
+         " at (" + std::to_string(det.a[0]) + ", " + std::to_string(det.a[1]) + ", " +
+         std::to_string(det.a[2]) + ") is more than half a cell diagonal from every explosive cell";
+}
+inline std::string zero_normal(std::size_t q) {
+  return "lighting_times: plane detonator " + std::to_string(q) + " has a zero normal";
 }
 
 }  // namespace detail
@@ -290,8 +354,7 @@ inline std::vector<double> lighting_times(const LightingGrid& g,
   for (std::size_t q = 0; q < detonators.size(); ++q) {
     const Detonator& det = detonators[q];
     if (det.kind == Detonator::Kind::Plane && detail::dot(det.b, det.b) == 0)
-      throw std::invalid_argument("lighting_times: plane detonator " + std::to_string(q) +
-                                  " has a zero normal");
+      throw std::invalid_argument(detail::zero_normal(q));
     bool lit = false;
     for (long c = 0; c < n; ++c) {
       if (!explosive[c]) continue;
@@ -307,13 +370,7 @@ inline std::vector<double> lighting_times(const LightingGrid& g,
         open.push({tc, c});
       }
     }
-    if (!lit) {
-      throw std::invalid_argument(std::string("lighting_times: ") + to_string(det.kind) +
-                                  " detonator " + std::to_string(q) + " at (" +
-                                  std::to_string(det.a[0]) + ", " + std::to_string(det.a[1]) +
-                                  ", " + std::to_string(det.a[2]) +
-                                  ") is more than half a cell diagonal from every explosive cell");
-    }
+    if (!lit) throw std::invalid_argument(detail::misplaced(q, det));
   }
 
   while (!open.empty()) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "burn/lighting_device.hpp"
 #include "core/error.hpp"
 #include "remap/per_mass.hpp"
 
@@ -27,9 +28,14 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup) : mesh_(mesh) {
   ff_ = setup.ff;
   c_floor_ = setup.programmed || setup.volume_burn ? params_.d_cj : Real(0);
   reactive_ = {-1, f_, c_floor_, mixed_, unreacted_, e0_, setup.equilibrium};
+  host_lighting_ = setup.host_lighting;
   if (!setup.programmed || setup.material >= 0) return;
   // every cell is explosive in a single-material scene, so the Huygens construction is the
   // straight-line distance
+  if (!host_lighting_) {
+    light_device(nullptr);
+    return;
+  }
   long n = 1;
   for (int d = 0; d < 3; ++d) n *= mesh.global_cells(d);
   set_lighting(std::vector<std::uint8_t>(n, 1), setup.detonators);
@@ -42,9 +48,7 @@ Burn::Burn(const Mesh& mesh, const BurnSetup& setup, const mat::MaterialState* m
   reactive_.material = material_;
 }
 
-// Lighting times on the whole global mesh, each rank keeping its block. Host-side, once.
-void Burn::set_lighting(const std::vector<std::uint8_t>& explosive,
-                        const std::vector<Detonator>& detonators) {
+LightingGrid Burn::lighting_grid() const {
   const Geometry g = mesh_.geometry();
   LightingGrid grid;
   for (int d = 0; d < 3; ++d) {
@@ -52,6 +56,74 @@ void Burn::set_lighting(const std::vector<std::uint8_t>& explosive,
     grid.origin[d] = double(g.lo[d]);
     grid.h[d] = double(g.dx[d]);
   }
+  return grid;
+}
+
+namespace {
+
+// The lighting times of the rank's cells from the per-rank construction: an explosive cell's own;
+// a cell with some explosive but less than half (frac > 0, not in the mask), the earliest lit
+// explosive neighbour's time plus the distance between the centres over D (as set_lighting).
+struct WriteTimes {
+  Field3 tl, frac;
+  bool partial;
+  Kokkos::View<LightingLabel***, MemSpace> lab;
+  ExplosiveBits bits;
+  Geometry geo;
+  double d_cj;
+  KOKKOS_INLINE_FUNCTION void operator()(int i, int j, int k) const {
+    const int g[3] = {geo.global_index(0, i), geo.global_index(1, j), geo.global_index(2, k)};
+    const double never = double(kNeverLit);
+    if (bits.explosive(g[0], g[1], g[2])) {
+      tl(i, j, k) = Real(lab(i, j, k).t);
+      return;
+    }
+    double best = never;
+    if (partial && frac(i, j, k) > 0) {
+      const double* h = bits.box.h;
+      for (int c = -1; c <= 1; ++c)
+        for (int b = -1; b <= 1; ++b)
+          for (int a = -1; a <= 1; ++a) {
+            if (!bits.in_grid(g[0] + a, g[1] + b, g[2] + c) ||
+                !bits.explosive(g[0] + a, g[1] + b, g[2] + c))
+              continue;
+            const double tq = lab(i + a, j + b, k + c).t;
+            if (!(tq < never)) continue;
+            const double dist = MP_KOKKOS_MATH::sqrt(a * a * h[0] * h[0] + b * b * h[1] * h[1] +
+                                                     c * c * h[2] * h[2]);
+            const double v = tq + dist / d_cj;
+            best = v < best ? v : best;
+          }
+    }
+    tl(i, j, k) = Real(best);
+  }
+};
+
+}  // namespace
+
+// Lighting times built per rank by kernels (lighting_device.hpp) from the cells at least half
+// explosive (frac null: every cell).
+void Burn::light_device(const Field3* frac) {
+  const LightingGrid grid = lighting_grid();
+  const ExplosiveBits bits = explosive_bits(mesh_, grid, frac, Real(0.5));
+  LightingRun run;
+  try {
+    run = lighting_times_device(mesh_, grid, bits, detonators_, double(params_.d_cj));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("burn: ") + e.what());
+  }
+  sweeps_ = run.sweeps;
+  Kokkos::parallel_for("burn::lighting_write", mesh_.cells(Region::Owned),
+                       WriteTimes{t_light_, frac ? *frac : Field3(), frac != nullptr, run.label,
+                                  bits, mesh_.geometry(), double(params_.d_cj)});
+  Kokkos::fence();
+}
+
+// Lighting times on the whole global mesh, each rank keeping its block. Host-side, once (the
+// reference construction, `burn.lighting: host`).
+void Burn::set_lighting(const std::vector<std::uint8_t>& explosive,
+                        const std::vector<Detonator>& detonators) {
+  const LightingGrid grid = lighting_grid();
   std::vector<double> times;
   try {
     times = lighting_times(grid, explosive, detonators, double(params_.d_cj));
@@ -103,8 +175,12 @@ void Burn::set_lighting(const std::vector<std::uint8_t>& explosive,
 
 void Burn::light() {
   if (!mm_ || !programmed_) return;
-  // the cells at least half explosive, gathered over the ranks
   const Field3 frac = mm_->fraction(material_);
+  if (!host_lighting_) {
+    light_device(&frac);
+    return;
+  }
+  // the cells at least half explosive, gathered over the ranks
   auto hf = Kokkos::create_mirror_view(frac);
   Kokkos::deep_copy(hf, frac);
   long n = 1;

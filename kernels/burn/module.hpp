@@ -4,8 +4,9 @@
 // e), the products EOS scaled by F: burn.hpp he_pressure; or, with an unreacted EOS (mixed()),
 // p = (1 - F) P_u(rho, e - e0) + F P(rho, e): burn.hpp he_pressure_mixed, evaluated in the
 // hydro's EOS and predictor kernels), the burn-fraction update after the Lagrangian step, and
-// the remap (F per unit mass). Point functions in burn.hpp, the Huygens lighting-time
-// construction in lighting.hpp.
+// the remap (F per unit mass). Point functions in burn.hpp; the Huygens lighting-time
+// construction in lighting_device.hpp (Kokkos kernels on each rank's block, the default) and its
+// host reference over the global grid in lighting.hpp (`burn.lighting: host`).
 //
 // The explosive's internal energy includes its chemical energy (the region's `energy`), so the
 // products EOS at (rho0, e0) is the constant-volume explosion state and F releases it; total
@@ -20,7 +21,8 @@
 // its own density, and a cell holding unburnt explosive gets c >= D. Lighting times run through
 // the cells at least half explosive (inert cells shadow); a cell with less explosive takes the
 // earliest time of a lit neighbour plus the distance between their centres over D, so no
-// explosive is left unlit behind a thin layer of mixed cells.
+// explosive is left unlit behind a thin layer of mixed cells (a kernel over the rank's cells that
+// reads its neighbours' times through one ghost layer).
 #pragma once
 #include <string>
 #include <vector>
@@ -55,6 +57,9 @@ struct BurnSetup {
   // needs the unreacted EOS (mixed), whose Hugoniot and the products' EOS `ff` carries.
   bool forest_fire = false;
   ForestFire ff;
+  // Lighting times by the host reference construction over the global grid (lighting.hpp)
+  // instead of the per-rank kernels (lighting_device.hpp).
+  bool host_lighting = false;
 };
 
 class Burn : public hydro::Module {
@@ -103,6 +108,11 @@ class Burn : public hydro::Module {
   const Field3& fraction() const { return f_; }
   const Field3& lighting_time() const { return t_light_; }
   double time() const { return time_; }
+  // Sweeps the per-rank lighting construction took (0: none ran).
+  int lighting_sweeps() const { return sweeps_; }
+  // Builds the lighting times with the per-rank kernels from the cells whose fraction is at
+  // least half (frac null: every cell; collective). Public: it launches kernels.
+  void light_device(const Field3* frac);
   // The clock a restart resumes from (the run's time; the module's starts at 0 with the run).
   void set_time(double t) override { time_ = t; }
   const BurnParams& params() const { return params_; }
@@ -115,6 +125,7 @@ class Burn : public hydro::Module {
   Real e0() const { return e0_; }
 
  private:
+  LightingGrid lighting_grid() const;
   void set_lighting(const std::vector<std::uint8_t>& explosive,
                     const std::vector<Detonator>& detonators);
 
@@ -138,6 +149,8 @@ class Burn : public hydro::Module {
   Field3 f_, t_light_, scratch_;
   eos::Reactive reactive_;
   double time_ = 0;
+  bool host_lighting_ = false;
+  int sweeps_ = 0;
 };
 
 }  // namespace mp::burn

@@ -291,6 +291,9 @@ const std::map<std::string, std::string>& key_notes() {
       {"materials[].burn.ramp_cells", "programmed burn's ramp, in largest cell edges"},
       {"materials[].burn.programmed", "programmed burn from lighting times"},
       {"materials[].burn.volume_burn", "CJ volume burn"},
+      {"materials[].burn.lighting",
+       "lighting times by per-rank kernels (device) or the host reference over the global grid "
+       "(host; kernels/burn/lighting.hpp)"},
       {"materials[].burn.closure",
        "with `unreacted`: both phases at the cell's state, or at one pressure (docs/numerics.md)"},
       {"materials[].burn.forest_fire",

@@ -141,10 +141,10 @@ void read_forest_fire(const DeckNode& n, BurnSpec& b) {
 // D and p_cj), detonators: [{type: point, at: [x, y, z]} | {type: line, from: [..], to: [..]} |
 // {type: plane, at: [..], normal: [..]}, each with an optional firing time], ramp_cells: 2,
 // programmed: true, volume_burn: false, unreacted: <library name of the unreacted solid>,
-// forest_fire: {pop_plot: <name>} | {a: .., b: ..}}.
+// forest_fire: {pop_plot: <name>} | {a: .., b: ..}, lighting: device | host}.
 void read_burn(const DeckNode& n, MaterialSpec& spec) {
   n.expect_keys({"detonation_speed", "cj_pressure", "detonators", "ramp_cells", "programmed",
-                 "volume_burn", "unreacted", "forest_fire", "closure"});
+                 "volume_burn", "unreacted", "forest_fire", "closure", "lighting"});
   BurnSpec& b = spec.burn;
   b.on = true;
   const bool jwl = spec.eos == "jwl";
@@ -161,6 +161,8 @@ void read_burn(const DeckNode& n, MaterialSpec& spec) {
   b.ramp_cells = n.get_real("ramp_cells", 0.5, 100, 2);
   b.programmed = n.get_bool("programmed", true);
   b.volume_burn = n.get_bool("volume_burn", false);
+  b.host_lighting =
+      n.get_choice("lighting", Choices<bool>{{"device", false}, {"host", true}}, false);
   if (n.has("forest_fire")) read_forest_fire(n.child("forest_fire"), b);
   if (!b.programmed && !b.volume_burn && !b.forest_fire)
     n.fail("burn needs programmed and/or volume_burn true, or a forest_fire block");

@@ -51,6 +51,9 @@ struct BurnSpec {
   bool forest_fire = false;
   std::string pop_plot;
   double pop_a = 0, pop_b = 0;
+  // lighting: host builds the lighting times by the host reference construction over the
+  // global grid (kernels/burn/lighting.hpp) instead of the per-rank kernels (the default, device)
+  bool host_lighting = false;
 };
 
 struct MaterialSpec {

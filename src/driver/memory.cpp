@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "burn/lighting.hpp"
+#include "burn/lighting_device.hpp"
 #include "core/error.hpp"
 #include "core/memory.hpp"
 #include "driver/simulation.hpp"
@@ -65,10 +66,16 @@ bool checkpoints_on(const Scene& s) {
   return s.output.checkpoint_cycles > 0 || s.output.checkpoint_seconds > 0;
 }
 
-bool programmed_burn(const Scene& s) {
+// Bytes per global cell that every rank holds for the lighting times beside its Kokkos cell
+// arrays: the host construction's global arrays (burn.lighting: host), or the per-rank
+// construction's explosive bit mask (its labels are cell arrays of the block, which the probe
+// weighs with the rest); 0 without programmed burn.
+double lighting_bytes_per_cell(const Scene& s) {
   for (const auto& m : s.materials)
-    if (m.burn.on && m.burn.programmed) return true;
-  return false;
+    if (m.burn.on && m.burn.programmed)
+      return m.burn.host_lighting ? burn::kLightingHostBytesPerCell
+                                  : burn::kLightingMaskBytesPerCell;
+  return 0;
 }
 
 // One probe run at `cells`: the scene set up and run two cycles on this rank alone, its
@@ -170,8 +177,7 @@ MemoryEstimate estimate_memory(const Scene& scene, const Mesh& block) {
   }
   MemoryEstimate e;
   // the lighting times are built in the set-up, beside what it allocated
-  if (programmed_burn(scene))
-    e.lighting = burn::kLightingHostBytesPerCell * double(block.global_cell_count());
+  e.lighting = lighting_bytes_per_cell(scene) * double(block.global_cell_count());
   std::vector<double> parts = at_peak;
   double peak = 0, setup = e.lighting;
   for (std::size_t c = 0; c < parts.size(); ++c) {

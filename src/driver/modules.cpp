@@ -57,6 +57,7 @@ burn::BurnSetup material_burn(const MaterialSpec& m) {
   b.ramp_cells = Real(bs.ramp_cells);
   b.programmed = bs.programmed;
   b.volume_burn = bs.volume_burn;
+  b.host_lighting = bs.host_lighting;
   if (!bs.unreacted.empty()) {
     // the deck reader checked the entry (a mie_gruneisen library material)
     b.mixed = true;
