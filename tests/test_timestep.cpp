@@ -252,6 +252,22 @@ TEST(TimeStep, TransportLimitOfEachRule) {
   }
 }
 
+// The defaults (numerics.hpp StepControl; docs/numerics.md "Time step"): the cloverleaf rule,
+// and the transport factor the deck's cfl unless the deck gives its own; the same through
+// Options built without a deck (StepControl's cfl_transport 0 stands for the cfl).
+TEST(TimeStep, DefaultRuleAndTransportFactor) {
+  auto a = make("sod_x.yaml", {"mesh.cells=[20,2,2]", "time.cfl=0.3"});
+  EXPECT_TRUE(a->hydro().options().rule == hydro::StepRule::CloverLeaf);
+  EXPECT_EQ(a->hydro().options().cfl_transport, Real(0.3));
+  auto b = make("sod_x.yaml", {"mesh.cells=[20,2,2]", "time.cfl=0.3", "time.cfl_transport=0.5"});
+  EXPECT_EQ(b->hydro().options().cfl_transport, Real(0.5));
+  hydro::StepControl sc;
+  sc.cfl = 0.7;
+  EXPECT_EQ(hydro::Options(hydro::Numerics{}, sc).cfl_transport, Real(0.7));
+  sc.cfl_transport = 0.25;
+  EXPECT_EQ(hydro::Options(hydro::Numerics{}, sc).cfl_transport, Real(0.25));
+}
+
 // CloverLeaf's divergence limit: the 123 problem at its start (u = -2 | +2 about x = 0.5,
 // c = 0.75) with cfl_transport 0.1, so the flow limits bind rather than the sound. The separate
 // rule takes 0.1 dx / max|u| = 0.05 dx in every cell (all 160 tie). CloverLeaf's transport limit
