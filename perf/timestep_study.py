@@ -83,7 +83,7 @@ def main():
             data = json.load(f)
     else:
         data = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), "rules": rules,
-                "repeat": a.repeat, "machine": os.uname().nodename + ", " + str(os.cpu_count()) + " cores",
+                "repeat": a.repeat, "cfl_transport": "the deck's cfl (the default)", "machine": os.uname().nodename + ", " + str(os.cpu_count()) + " cores",
                 "commit": subprocess.run(["git", "rev-parse", "--short", "HEAD"], stdout=subprocess.PIPE,
                                          text=True, cwd=os.path.dirname(os.path.abspath(__file__))).stdout.strip()}
         tj = a.out + "_accuracy_raw.json"
@@ -168,7 +168,7 @@ def main():
           "(perf/tradeoff --rules, quasi-1-D scenes on cubic cells). Rules (docs/numerics.md, \"Time step\"): "
           "combined `cfl dx / (c_eff + |u|)`; separate `min(cfl dx / c_eff, cfl_transport dx / |u|)`; "
           "cloverleaf CloverLeaf3D_ref's sound, face-velocity and divergence limits; every deck at its own "
-          "cfl, cfl_transport 0.5 (the default).\n",
+          f"cfl, cfl_transport {data.get('cfl_transport', '0.5 (the default then)')}.\n",
           "Each rule's error interpolated in log-log against wall time (or work) at the reference, the "
           "geometric mean of the range all rules cover (`*`: a rule's end segment extended to reach it). "
           "Ratio: that error over the first rule's (below 1: more accurate for the same time).\n",

@@ -55,11 +55,12 @@ MaderRun run_mader(int n) {
 
 // Detonation speed within 1 % (front position over time; the burn ramp puts the p_cj/4 level
 // 0.73 cells behind the lighting front at every resolution, so the error is O(dx): 0.46 % at
-// 200 cells, 0.23 % at 400), the peak pressure within 5 % of p_cj (0.987 / 1.019 p_cj at 200 /
-// 400 cells: the programmed burn has no von Neumann spike, the viscosity's overshoot grows
-// with resolution, 1.045 at 800), and the L1 error of the pressure against the exact Taylor
-// wave falling at first order (2.57e-3, 1.31e-3 at 200, 400 cells; a shock-capturing front
-// limits the order to 1).
+// 200 cells, 0.23 % at 400), the peak pressure within 5 % of p_cj (0.993 / 1.033 p_cj at 200 /
+// 400 cells under the default cloverleaf step, 0.987 / 1.019 under the combined one: the
+// programmed burn has no von Neumann spike, the viscosity's overshoot grows with resolution,
+// 1.045 at 800 under combined), and the L1 error of the pressure against the exact Taylor wave
+// falling at first order (2.59e-3, 1.34e-3 at 200, 400 cells; combined 2.57e-3, 1.31e-3; a
+// shock-capturing front limits the order to 1).
 TEST(BurnCycle, MaderDetonationMatchesTheExactTaylorWave) {
   const exact::Mader ex(0.25, 1.0, 3.0);
   MaderRun prev;

@@ -159,8 +159,10 @@ DetRun run_detonation(int n, bool unreacted) {
 // The planar detonation with the unreacted EOS: the p_cj/2 level runs at D within 1 % (D =
 // 0.880 cm/us, p_cj = 0.37 Mbar, Dobratz & Crawford), its error falling with the cell size, and
 // the peak pressure is p_cj within 5 %; the same runs with p = F P_products, for comparison.
-// Observed at t = 0.8 us, 200 / 400 cells: unreacted EOS -0.840 % / -0.422 % (the level 1.18 /
-// 1.19 cells behind D t), peak 0.965 / 0.988 p_cj; p = F P -0.967 % / -0.468 %, 0.967 / 0.990.
+// Observed at t = 0.8 us, 200 / 400 cells, under the default cloverleaf step (2026-12-07):
+// unreacted EOS -0.832 % / -0.418 % (the level 1.17 / 1.18 cells behind D t), peak 0.969 /
+// 0.995 p_cj; p = F P -0.956 % / -0.467 %, 0.979 / 0.991 (under the combined step -0.840 % /
+// -0.422 %, 0.965 / 0.988 p_cj; -0.967 % / -0.468 %, 0.967 / 0.990).
 TEST(BurnUnreacted, PlanarDetonationStillReachesTheCjState) {
   const auto* pr = materials::find_material("pbx9404_products");
   const double d = pr->param("D"), pcj = pr->param("p_cj");

@@ -279,10 +279,17 @@ void print(double p_in, double dz, const Initiation& r) {
 }  // namespace
 
 // The detonation that builds up runs at the products' D = 0.880 cm/us within 1 %, the error
-// falling with the cell size at every pressure, and its peak pressure lies between p_cj and the
+// not rising with finer cells at any pressure, and its peak pressure lies between p_cj and the
 // von Neumann spike (the unreacted Hugoniot at Us = D: 0.5496 Mbar). Observed (2026-12-07,
-// double): D -0.76 / -0.60 % (4 GPa), -0.84 / -0.61 % (6 GPa), -0.79 / -0.54 % (9 GPa) at 0.1 /
-// 0.05 mm; peak 1.33-1.40 p_cj at 0.1 mm, 1.39-1.49 p_cj (0.515-0.551 Mbar) at 0.05 mm.
+// double, the default cloverleaf step): D -0.60 / -0.55 % (4 GPa), -0.577 / -0.577 % (6 GPa),
+// -0.76 / -0.52 % (9 GPa) at 0.1 / 0.05 mm; peak 1.27-1.37 p_cj at 0.1 mm, 1.45-1.47 p_cj
+// (0.535-0.545 Mbar) at 0.05 mm. Under the combined step: D -0.76 / -0.60 %, -0.84 / -0.61 %,
+// -0.79 / -0.54 %; peak 1.33-1.40 and 1.39-1.49 p_cj. The error stops falling at about 0.55 %
+// (RunDistanceMatchesThePopPlot's 0.025 mm runs: -0.62 / -0.63 / -0.94 % under combined, above
+// their 0.05 mm errors): at 6 GPa the cloverleaf step's 0.1 mm run already sits on that floor,
+// 1.4e-6 below the 0.05 mm one (0.577226 against 0.577361 %). So the finer error may exceed
+// the coarser by 1e-4 (0.01 % of D, 1/55 of the floor), no more: until 2026-12-07 it had to be
+// strictly lower.
 TEST(ForestFire, BuiltUpDetonationRunsAtD) {
   const burn::ForestFire ff = pbx9404();
   const double d_cj = materials::find_material("pbx9404_products")->param("D");
@@ -294,7 +301,7 @@ TEST(ForestFire, BuiltUpDetonationRunsAtD) {
       print(p_in, dz, r);
       const double err = std::abs(r.d / d_cj - 1);
       EXPECT_LT(err, 0.01) << p_in << " " << dz;
-      EXPECT_LT(err, prev) << p_in << " " << dz;
+      EXPECT_LT(err, prev + 1e-4) << p_in << " " << dz;
       prev = err;
       EXPECT_GT(r.p_peak, ff.p_max) << p_in << " " << dz;
       EXPECT_LT(r.p_peak, 1.02 * p_vn) << p_in << " " << dz;
@@ -311,10 +318,15 @@ TEST(ForestFire, BuiltUpDetonationRunsAtD) {
 // with the cell size at every pressure and is within 10 % at 0.025 mm.
 TEST(ForestFire, RunDistanceMatchesThePopPlot) {
   const burn::ForestFire ff = pbx9404();
-  // observed (2026-12-07, double), % of the Pop plot at 0.1 / 0.05 / 0.025 mm:
-  //   4 GPa +10.36 / +6.91 / +5.11; 6 GPa +18.11 / +11.36 / +8.19; 9 GPa +24.05 / +15.20 / +9.59
-  //   (the lines' intersection, printed beside: -14.6 / -17.1 / -18.1, -12.4 / -16.6 / -18.4,
-  //   -8.5 / -14.9 / -17.4)
+  // observed (2026-12-07, double, the default cloverleaf step), % of the Pop plot at 0.1 /
+  // 0.05 / 0.025 mm:
+  //   4 GPa +10.42 / +7.03 / +5.28; 6 GPa +18.04 / +11.93 / +8.53; 9 GPa +26.67 / +16.52 / +9.93
+  //   (the lines' intersection, printed beside: -14.6 / -17.0 / -18.1, -12.1 / -16.5 / -18.2,
+  //   -8.5 / -14.6 / -17.2); under the combined step 4 GPa +10.36 / +6.91 / +5.11, 6 GPa +18.11 /
+  //   +11.36 / +8.19, 9 GPa +24.05 / +15.20 / +9.59. The default's errors at 0.025 mm are 3-4 %
+  //   above those at the same mesh but take 0.85x the cycles: at equal work (cells x cycles,
+  //   the combined errors interpolated in log-log) they are the same or lower (5.28 against 5.27,
+  //   8.53 against 8.50, 9.93 against 10.11 %).
   for (double p_in : kPressures) {
     const double x_pop = burn::pop_run_distance(ff.pop, p_in);
     double prev = 1e9;
@@ -322,10 +334,10 @@ TEST(ForestFire, RunDistanceMatchesThePopPlot) {
       const Initiation r = initiate_at(p_in, dz);
       print(p_in, dz, r);
       const double err = std::abs(r.x_star / x_pop - 1);
-      EXPECT_LT(err, prev) << p_in << " " << dz;  // falling with the cell size
+      EXPECT_LT(err, prev + 1e-4) << p_in << " " << dz;  // falling with the cell size
       prev = err;
       if (dz < 0.003) {
-        EXPECT_LT(err, 0.10) << p_in;  // observed 5.11, 8.19, 9.59 %
+        EXPECT_LT(err, 0.10) << p_in;  // observed 5.28, 8.53, 9.93 % (combined 5.11, 8.19, 9.59)
       }
     }
   }

@@ -20,8 +20,9 @@ namespace tx = mp::exact::taylor;
 namespace {
 
 constexpr double kRadius = 0.5 * tx::kDiameter0;  // cm
-// Cells across the radius of the two resolutions: R/8 runs 1670 cycles of 18x18x56 cells (21 s
-// on 2 ranks); an R/6 run (1263 cycles of 14x14x42) costs under half of that.
+// Cells across the radius of the two resolutions: R/8 runs 1637 cycles of 18x18x56 cells (21 s
+// on 2 ranks; 1670 under the combined step); an R/6 run (1238 cycles of 14x14x42; 1263) costs
+// under half of that.
 constexpr int kCoarse = 6, kFine = 8;
 
 struct TaylorRun {

@@ -10,6 +10,7 @@
 //   dt = cfl * min(min_d dx_d / (c_eff + v_d + 1e-30), [unsplit] 1 / (sum_d v_d / dx_d + 1e-30)).
 // and the other two time.rule values (numerics.hpp StepRule) likewise: separate
 //   dt = min_d min(cfl dx_d / (c_eff + 1e-30), cfl_u dx_d / (v_d + 1e-30)),
+//   [unsplit] cfl_u / (sum_d v_d / dx_d + 1e-30) (either rule),
 // and cloverleaf (CloverLeaf3D_ref's calc_dt_kernel), with f_d-, f_d+ the means of the velocity
 // component d over the 4 nodes of the cell's low and high faces normal to d:
 //   dt = min(cfl min_d dx_d / (c_eff + 1e-30), min_d cfl_u dx_d / (max|f_d+-| + 1e-30),
@@ -103,9 +104,18 @@ HostStep host_step(Simulation& sim) {
                 (hi[0] - lo[0]) / dx[0] + (hi[1] - lo[1]) / dx[1] + (hi[2] - lo[2]) / dx[2];
             dt = mmin(dt, cu / (mabs(div) + Real(1e-30)));
           }
+          bool sum = false;
+          if (opt.unsplit) {
+            const Real dt_sum =
+                cu / (vmax[0] / dx[0] + vmax[1] / dx[1] + vmax[2] / dx[2] + Real(1e-30));
+            if (dt_sum < dt) {
+              dt = dt_sum;
+              sum = true;
+            }
+          }
           if (dt < h.dt) {
             h.dt = dt;
-            h.limit = "cfl";
+            h.limit = sum ? "courant_sum" : "cfl";
             h.limiting.clear();
           }
           if (dt == h.dt) h.limiting.push_back({int(i), int(j), int(k)});
@@ -194,8 +204,9 @@ TEST(TimeStep, ViscosityAndNodeSpeedEnterTheLimit) {
   EXPECT_LT(double(ts.dt), 0.99 * dt_sound);
 }
 
-// The three time.rule values on one state (a Sod tube after 10 cycles under the default rule:
-// moving nodes, a viscous shock): each step equals its host recomputation bit for bit; the
+// The three time.rule values on one state (a Sod tube after 10 cycles under the default rule,
+// cloverleaf: moving nodes, a viscous shock): each step equals its host recomputation bit for
+// bit; the
 // combined rule's is the shortest (it adds |u| to c_eff), and the separate and CloverLeaf rules
 // allow more (each cell's separate limits both exceed cfl dx / (c_eff + |u|); CloverLeaf's face
 // means are at most the corner maxima; observed ratios in the printout).
@@ -203,9 +214,10 @@ TEST(TimeStep, EachRuleMatchesItsDefinition) {
   auto sim =
       make("sod_x.yaml", {"mesh.cells=[50,2,2]", "mesh.hi=[1,0.04,0.04]", "time.max_cycles=10"});
   sim->run();
+  const Real cu = sim->hydro().options().cfl_transport;
+  sim->hydro().set_time_rule(hydro::StepRule::Combined, cu);
   const hydro::TimeStep comb = sim->hydro().time_step(0, 0, 1e30);
   expect_host_step(comb, host_step(*sim), "combined");
-  const Real cu = sim->hydro().options().cfl_transport;
   for (const auto rule : {hydro::StepRule::Separate, hydro::StepRule::CloverLeaf}) {
     sim->hydro().set_time_rule(rule, cu);
     const hydro::TimeStep ts = sim->hydro().time_step(0, 0, 1e30);
@@ -214,7 +226,7 @@ TEST(TimeStep, EachRuleMatchesItsDefinition) {
     std::printf("  %s / combined: %.4f\n", name, double(ts.dt / comb.dt));
     EXPECT_GT(ts.dt, comb.dt) << name;
   }
-  sim->hydro().set_time_rule(hydro::StepRule::Combined, cu);
+  sim->hydro().set_time_rule(hydro::StepRule::CloverLeaf, cu);
 }
 
 // A uniform stream (c = 0.0374, u = 10 along x, periodic): the transport limit binds. Separate:
@@ -238,6 +250,22 @@ TEST(TimeStep, TransportLimitOfEachRule) {
       EXPECT_EQ(ts.dt, Real(0.5) * dx / (Real(10) + Real(1e-30))) << rule;
     }
   }
+}
+
+// The defaults (numerics.hpp StepControl; docs/numerics.md "Time step"): the cloverleaf rule,
+// and the transport factor the deck's cfl unless the deck gives its own; the same through
+// Options built without a deck (StepControl's cfl_transport 0 stands for the cfl).
+TEST(TimeStep, DefaultRuleAndTransportFactor) {
+  auto a = make("sod_x.yaml", {"mesh.cells=[20,2,2]", "time.cfl=0.3"});
+  EXPECT_TRUE(a->hydro().options().rule == hydro::StepRule::CloverLeaf);
+  EXPECT_EQ(a->hydro().options().cfl_transport, Real(0.3));
+  auto b = make("sod_x.yaml", {"mesh.cells=[20,2,2]", "time.cfl=0.3", "time.cfl_transport=0.5"});
+  EXPECT_EQ(b->hydro().options().cfl_transport, Real(0.5));
+  hydro::StepControl sc;
+  sc.cfl = 0.7;
+  EXPECT_EQ(hydro::Options(hydro::Numerics{}, sc).cfl_transport, Real(0.7));
+  sc.cfl_transport = 0.25;
+  EXPECT_EQ(hydro::Options(hydro::Numerics{}, sc).cfl_transport, Real(0.25));
 }
 
 // CloverLeaf's divergence limit: the 123 problem at its start (u = -2 | +2 about x = 0.5,
@@ -268,7 +296,8 @@ TEST(TimeStep, DivergenceLimitOfCloverLeafRule) {
   }
 }
 
-// The linear viscosity's own stability bound (diagnostics.cpp, CflCells): an undamped acoustic
+// The linear viscosity's own stability bound of the combined rule (diagnostics.cpp, CflCells;
+// the other rules do not apply it, so the runs set time.rule=combined): an undamped acoustic
 // wave (configs/elastic_wave.yaml, a 1e-4 cm/us bar on a wall, aluminium with and without
 // strength) at the deck's largest cfl. With the step from c_eff alone its total energy grew
 // 9.1x at cfl 1.0 with strength and 22.6x / 83.6x at cfl 0.95 / 1.0 without (a node-to-node
@@ -282,7 +311,9 @@ TEST(TimeStep, LinearViscosityBoundKeepsAnUndampedWaveStable) {
        std::vector<std::vector<std::string>>{{"time.cfl=1.0"},
                                              {"time.cfl=0.95", "materials.0.strength=null"},
                                              {"time.cfl=1.0", "materials.0.strength=null"}}) {
-    auto r = test::run_scene(test::load_scene("elastic_wave.yaml", ov));
+    auto with_rule = ov;
+    with_rule.push_back("time.rule=combined");
+    auto r = test::run_scene(test::load_scene("elastic_wave.yaml", with_rule));
     ASSERT_TRUE(r.result.ok) << r.result.health.what;
     const double e0 = r.result.start.total(), e1 = r.result.end.total();
     const double change = (e1 - e0) / std::abs(e0);
@@ -293,8 +324,9 @@ TEST(TimeStep, LinearViscosityBoundKeepsAnUndampedWaveStable) {
 }
 
 TEST(TimeStep, UnsplitCourantSum) {
-  // A cold gas (c = 0.0374) streaming diagonally at 10 cm/us on equal cells: each axis alone
-  // allows dx / (c + 10), the sum of the three Courant numbers only dx / 30.
+  // A cold gas (c = 0.0374) streaming diagonally at 10 cm/us on equal cells, under the default
+  // rule (cloverleaf, cfl_transport = cfl = 0.5): each axis alone allows cfl dx / 10, the sum of
+  // the three Courant numbers only cfl dx / 30 (observed unsplit / split 1/3).
   const std::vector<std::string> flow = {
       "mesh.cells=[20,2,2]",           "mesh.hi=[0.1,0.01,0.01]",       "boundaries.x=periodic",
       "regions.0.velocity=[10,10,10]", "regions.1.velocity=[10,10,10]", "regions.0.pressure=1e-3",

@@ -73,9 +73,12 @@ TEST(VolumeBurn, CompressedChargeBurnsBeforeItsLightingTime) {
   const Burnt prog = run(std::string("{") + kUnreacted + ", " + kDetonator + "}");
   const Burnt both =
       run(std::string("{volume_burn: true, ") + kUnreacted + ", " + kDetonator + "}");
-  // the volume-burn front's speed: a least-squares line through (z, t_half) over 0.05..0.4 cm
+  // the volume-burn front's speed: a least-squares line through (z, t_half) over 0.05..0.39 cm
+  // (the front reaches the next cell, z = 0.395, at t = 0.600 under the combined step and at
+  // 0.601, after the end, under the default cloverleaf step; a later end lets the programmed
+  // front's remapped tail of F reach the cells near the wall: 6.6e-18 at z = 0.395 by 0.62 us)
   double s0 = 0, sz = 0, st = 0, szz = 0, szt = 0;
-  for (int k = 5; k < 40; ++k) {
+  for (int k = 5; k < 39; ++k) {
     const double z = (k + 0.5) * kDz, t = vol.t_half[k];
     ASSERT_GT(t, 0) << "cell " << k << " never burnt under volume burn";
     s0 += 1, sz += z, st += t, szz += z * z, szt += z * t;
@@ -87,10 +90,11 @@ TEST(VolumeBurn, CompressedChargeBurnsBeforeItsLightingTime) {
       "volume-burn front from the wall: %.5f cm/us in the explosive's frame (D %.3f, %+.2f %%); "
       "largest step %.5f us\n",
       front, d, 100 * (front / d - 1), vol.dt_max);
-  // a detonation-like front: within 6 % of D (observed -4.2 %: the volume burn has no reaction
-  // zone of its own, F follows the smeared shock's compression)
+  // a detonation-like front: within 6 % of D (observed -4.5 % under the default cloverleaf
+  // step, -4.2 % under the combined one over 0.05..0.4 cm: the volume burn has no reaction zone
+  // of its own, F follows the smeared shock's compression)
   EXPECT_NEAR(front / d, 1.0, 0.06);
-  for (int k : {5, 10, 20, 30, 39})
+  for (int k : {5, 10, 20, 30, 38})
     std::printf(
         "z %.3f cm: t_light %.4f us; F = 1/2 at %.4f (volume), %.4f (programmed), %.4f (both)\n",
         (k + 0.5) * kDz, t_light(k), vol.t_half[k], prog.t_half[k], both.t_half[k]);

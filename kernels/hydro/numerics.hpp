@@ -80,10 +80,13 @@ enum class StepRule { Combined, Separate, CloverLeaf };
 // time.dt_max).
 struct StepControl {
   double cfl = 0.5;
-  StepRule rule = StepRule::Combined;
+  // the default: perf/results/timestep_rules.md's winner at equal work (docs/numerics.md, "Time
+  // step", says why)
+  StepRule rule = StepRule::CloverLeaf;
   // the transport (and, for CloverLeaf's rule, divergence) limits' safety factor; the combined
-  // rule ignores it
-  double cfl_transport = 0.5;
+  // rule ignores it. 0 (the default): the cfl's value (transport() resolves it).
+  double cfl_transport = 0;
+  double transport() const { return cfl_transport > 0 ? cfl_transport : cfl; }
   double growth = 1.1;
   double dt_max = 1e30;
 };

@@ -14,7 +14,7 @@ Options::Options(const Numerics& n, const StepControl& t)
       free_expansion(Real(n.free_expansion)),
       cfl(Real(t.cfl)),
       rule(t.rule),
-      cfl_transport(Real(t.cfl_transport)),
+      cfl_transport(Real(t.transport())),
       growth(Real(t.growth)),
       dt_max(Real(t.dt_max)),
       ke_fix(n.ke_fix),

@@ -125,6 +125,7 @@ const std::map<std::string, std::string>& default_overrides() {
       {"materials[].burn.detonators", "required with `programmed: true`"},
       {"materials[].params", "the library entry's"},
       {"materials[].eos", "required without `library`"},
+      {"time.cfl_transport", "the deck's `time.cfl`"},
       {"boundaries.x", "`reflective`"},
       {"boundaries.y", "`reflective`"},
       {"boundaries.z", "`reflective`"},

@@ -338,7 +338,7 @@ Scene read_scene(const Deck& deck) {
   if (!(s.time.end > 0)) t.child("end").fail("end time must be positive");
   s.time.cfl = t.get_real("cfl", 1e-3, 1.0, s.time.cfl);
   s.time.rule = t.get_choice("rule", choices(s.time.rule), s.time.rule);
-  s.time.cfl_transport = t.get_real("cfl_transport", 1e-3, 1.0, s.time.cfl_transport);
+  s.time.cfl_transport = t.get_real("cfl_transport", 1e-3, 1.0, s.time.transport());
   s.time.dt_initial = t.get_real("dt_initial", 1e-300, kHuge, s.time.dt_initial);
   s.time.dt_max = t.get_real("dt_max", 1e-300, kHuge, s.time.dt_max);
   s.time.growth = t.get_real("growth", 1.0, 10.0, s.time.growth);
