@@ -144,16 +144,16 @@ int Hydro::heat_flux(Real dt) {
   // scratch of the remap, as ky and kz), Conductance's value or 0 where it has none; the
   // box's cells read their low faces and the high ones of the box's last cells, so the launch
   // runs over the box and one cell beyond its high sides (owned or ghost cells: the box is
-  // owned). A face without conductance adds kappa (e_b - e_a) = +-0 to the flux's sum, which
-  // never holds -0 (it starts at +0, and a sum of nonzero terms that cancels is +0): the sum,
-  // so the energies, are the per-face test's bit for bit.
+  // owned; a face found from its high cell has the value its low cell found: the min of two
+  // positive values is symmetric). A face without conductance adds kappa (e_b - e_a) = +-0 to
+  // the flux's sum, which never holds -0 (it starts at +0, and a sum of nonzero terms that
+  // cancels is +0): the sum, so the energies, are the per-face test's bit for bit.
   auto kx = s_.dual_u, ky = s_.dual_v, kz = s_.dual_w;
   const Real c = h * ds / vol;
   if (here) {
     const int clo[3] = {reach.lo[0], reach.lo[1], reach.lo[2]};
     const int chi[3] = {reach.hi[0] + 2, reach.hi[1] + 2, reach.hi[2] + 2};
-    const Real fa[3] = {kf.ax, kf.ay, kf.az};
-    const Real fax = fa[0], fay = fa[1], faz = fa[2];
+    const Real fax = kf.ax, fay = kf.ay, faz = kf.az;
     for_columns(
         "conduction::conductance", clo, chi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
           const auto Ja = local(J), ra = local(rho), X = local(kx), Y = local(ky), Z = local(kz);
