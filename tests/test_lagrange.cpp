@@ -539,7 +539,7 @@ TEST(TensorViscosity, LanesGiveThePerTensorEigenvaluesBitForBit) {
   for (int it = 0; it < 20000; ++it) {
     constexpr int N = 16;
     Real a00[N], a11[N], a22[N], a01[N], a02[N], a12[N];
-    bool done[N];
+    int done[N];
     Sym6 d[N];
     const int n = 1 + it % N;
     for (int l = 0; l < n; ++l) {
@@ -554,7 +554,7 @@ TEST(TensorViscosity, LanesGiveThePerTensorEigenvaluesBitForBit) {
       if (kind == 5) d[l] = {1, 1, 1, 0, 0, Real(1e-17)};
       a00[l] = d[l].xx, a11[l] = d[l].yy, a22[l] = d[l].zz;
       a01[l] = d[l].xy, a02[l] = d[l].xz, a12[l] = d[l].yz;
-      done[l] = l % 5 == 4 || (d[l].xy == 0 && d[l].xz == 0 && d[l].yz == 0);
+      done[l] = l % 5 == 4 || (d[l].xy == 0 && d[l].xz == 0 && d[l].yz == 0) ? 1 : 0;
     }
     hydro::eigenvalues_lanes(n, a00, a11, a22, a01, a02, a12, done);
     for (int l = 0; l < n; ++l) {

@@ -156,7 +156,8 @@ int world_size() {
 }  // namespace
 
 // Noh's heat flux (kernels/hydro/conduction.cpp) launches only in a cycle with a converging
-// cell, which the data decide: the jumps' exchange, conduction::reach, and per sub-step
+// cell, which the data decide: the jumps' exchange, conduction::reach, the faces'
+// conductances once (conduction::conductance, where a rank's cells conduct), and per sub-step
 // conduction::flux, conduction::apply and the energies' exchange. Returns the sub-steps after
 // checking that structure; `c` less those launches is the hydro cycle the counts below fix.
 long conduction_launches(Counted& c, long exchange_fills, long exchange_packs) {
@@ -165,14 +166,15 @@ long conduction_launches(Counted& c, long exchange_fills, long exchange_packs) {
     return it == c.by_name.end() ? 0L : it->second;
   };
   const long reach = count("conduction::reach"), flux = count("conduction::flux"),
-             apply = count("conduction::apply");
+             apply = count("conduction::apply"), conductance = count("conduction::conductance");
   EXPECT_LE(reach, 1);
   EXPECT_EQ(flux, apply);
+  EXPECT_EQ(conductance, flux > 0 ? 1 : 0);
   if (reach == 0) {
     EXPECT_EQ(flux, 0);
   }
   const long exchanges = reach == 0 ? 0 : 1 + flux;
-  c.total -= reach + flux + apply + exchanges * (exchange_fills + exchange_packs);
+  c.total -= reach + conductance + flux + apply + exchanges * (exchange_fills + exchange_packs);
   c.halo_fill -= exchanges * exchange_fills;
   c.halo_pack -= exchanges * exchange_packs;
   std::printf("  (conduction: %ld launch(es) of reach, %ld sub-step(s))\n", reach, flux);

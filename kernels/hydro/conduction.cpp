@@ -24,6 +24,7 @@
 
 #include <cmath>
 
+#include "core/columns.hpp"
 #include "core/math.hpp"
 #include "hydro/hydro.hpp"
 #include "hydro/point.hpp"
@@ -128,8 +129,8 @@ int Hydro::heat_flux(Real dt) {
   Reach reach;
   Kokkos::parallel_reduce("conduction::reach", mesh_.cells(Region::Owned),
                           ReachOf{kf, h, vol, s_.converging, Mesh::ng}, reach);
-  double local = double(reach.rate), global = 0;
-  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, mesh_.comm());
+  double rate = double(reach.rate), global = 0;
+  MPI_Allreduce(&rate, &global, 1, MPI_DOUBLE, MPI_MAX, mesh_.comm());
   if (!(global > 0)) return 0;
   // sub-steps: each within every cell's convex-combination bound ds * rate <= 1
   const int n = int(std::ceil(double(dt) * global * (1 + 1e-6)));
@@ -138,25 +139,64 @@ int Hydro::heat_flux(Real dt) {
   // before the remap reads them)
   auto de = s_.pre_vol;
   const bool here = reach.hi[0] >= reach.lo[0];
-  using Policy = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>;
-  const Policy box(
-      {here ? reach.lo[0] : 0, here ? reach.lo[1] : 0, here ? reach.lo[2] : 0},
-      {here ? reach.hi[0] + 1 : 0, here ? reach.hi[1] + 1 : 0, here ? reach.hi[2] + 1 : 0});
+  // The faces' conductances, frozen over the step: found once here, not in every sub-step.
+  // kx(i, j, k) holds the face between cells (i - 1, j, k) and (i, j, k) (a node-extent
+  // scratch of the remap, as ky and kz), Conductance's value or 0 where it has none; the
+  // box's cells read their low faces and the high ones of the box's last cells, so the launch
+  // runs over the box and one cell beyond its high sides (owned or ghost cells: the box is
+  // owned; a face found from its high cell has the value its low cell found: the min of two
+  // positive values is symmetric). A face without conductance adds kappa (e_b - e_a) = +-0 to
+  // the flux's sum, which never holds -0 (it starts at +0, and a sum of nonzero terms that
+  // cancels is +0): the sum, so the energies, are the per-face test's bit for bit.
+  auto kx = s_.dual_u, ky = s_.dual_v, kz = s_.dual_w;
   const Real c = h * ds / vol;
+  if (here) {
+    const int clo[3] = {reach.lo[0], reach.lo[1], reach.lo[2]};
+    const int chi[3] = {reach.hi[0] + 2, reach.hi[1] + 2, reach.hi[2] + 2};
+    const Real fax = kf.ax, fay = kf.ay, faz = kf.az;
+    for_columns(
+        "conduction::conductance", clo, chi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+          const auto Ja = local(J), ra = local(rho), X = local(kx), Y = local(ky), Z = local(kz);
+          const auto face = [&](int ia, int ja, int ka, int ib, int jb, int kb, Real a) {
+            const Real jf = mmin(Ja(ia, ja, ka), Ja(ib, jb, kb));
+            return jf > 0 ? mmin(ra(ia, ja, ka), ra(ib, jb, kb)) * jf * a : Real(0);
+          };
+#pragma GCC ivdep
+          for (int k = k0; k < k1; ++k) {
+            X(i, j, k) = face(i, j, k, i - 1, j, k, fax);
+            Y(i, j, k) = face(i, j, k, i, j - 1, k, fay);
+            Z(i, j, k) = face(i, j, k, i, j, k - 1, faz);
+          }
+        });
+  }
   for (int s = 0; s < n; ++s) {
     if (here) {
-      Kokkos::parallel_for(
-          "conduction::flux", box, KOKKOS_LAMBDA(int i, int j, int k) {
-            const Real ea = e(i, j, k);
-            Real sum = 0;
-            kf.faces(i, j, k, [&](int ib, int jb, int kb, Real kappa) {
-              sum += kappa * (e(ib, jb, kb) - ea);
-            });
-            de(i, j, k) = c * sum / rho(i, j, k);
+      const int blo[3] = {reach.lo[0], reach.lo[1], reach.lo[2]};
+      const int bhi[3] = {reach.hi[0] + 1, reach.hi[1] + 1, reach.hi[2] + 1};
+      for_columns(
+          "conduction::flux", blo, bhi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+            const auto ea = local(e), ra = local(rho), da = local(de), X = local(kx), Y = local(ky),
+                       Z = local(kz);
+#pragma GCC ivdep
+            for (int k = k0; k < k1; ++k) {
+              const Real e0 = ea(i, j, k);
+              // (the faces in Conductance::faces's order)
+              Real sum = 0;
+              sum += X(i, j, k) * (ea(i - 1, j, k) - e0);
+              sum += X(i + 1, j, k) * (ea(i + 1, j, k) - e0);
+              sum += Y(i, j, k) * (ea(i, j - 1, k) - e0);
+              sum += Y(i, j + 1, k) * (ea(i, j + 1, k) - e0);
+              sum += Z(i, j, k) * (ea(i, j, k - 1) - e0);
+              sum += Z(i, j, k + 1) * (ea(i, j, k + 1) - e0);
+              da(i, j, k) = c * sum / ra(i, j, k);
+            }
           });
-      Kokkos::parallel_for(
-          "conduction::apply", box,
-          KOKKOS_LAMBDA(int i, int j, int k) { e(i, j, k) += de(i, j, k); });
+      for_columns(
+          "conduction::apply", blo, bhi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
+            const auto ea = local(e), da = local(de);
+#pragma GCC ivdep
+            for (int k = k0; k < k1; ++k) ea(i, j, k) += da(i, j, k);
+          });
     }
     halo_.exchange({{e, Centering::Cell, {1, 1, 1}}});
   }

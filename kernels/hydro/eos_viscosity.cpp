@@ -151,11 +151,12 @@ struct ViscousTensorColumns {
       const int n = kb + kChunk < k1 ? kChunk : k1 - kb;
       Real xx[kChunk], yy[kChunk], zz[kChunk], xy[kChunk], xz[kChunk], yz[kChunk];
       Real e0[kChunk], e1[kChunk], e2[kChunk], f0[kChunk], f1[kChunk], f2[kChunk];
-      bool real[kChunk], done[kChunk];
+      // (int, not bool, masks: GCC 12 vectorizes no loop that mixes 1-byte and 8-byte lanes)
+      int real[kChunk], done[kChunk];
 #pragma GCC ivdep
       for (int l = 0; l < n; ++l) {
         const int k = kb + l;
-        real[l] = real_q(i, j, k);
+        real[l] = real_q(i, j, k) ? 1 : 0;
         xx[l] = e0[l] = node_jump<0>(u, i, j, k) * rx;
         yy[l] = e1[l] = node_jump<1>(v, i, j, k) * ry;
         zz[l] = e2[l] = node_jump<2>(w, i, j, k) * rz;
@@ -164,27 +165,38 @@ struct ViscousTensorColumns {
         yz[l] = f2[l] = Real(0.5) * (node_jump<2>(v, i, j, k) * rz + node_jump<1>(w, i, j, k) * ry);
         // (a diagonal tensor's eigenvalues are its diagonal: compression_direction's shortcut,
         // which the first sweep's test would take too)
-        done[l] = !real[l] || (f0[l] == 0 && f1[l] == 0 && f2[l] == 0);
+        done[l] = !real[l] || (f0[l] == 0 && f1[l] == 0 && f2[l] == 0) ? 1 : 0;
       }
       eigenvalues_lanes(n, e0, e1, e2, f0, f1, f2, done);
+      // each cell's stress, a vector loop too: every lane computes it, a cell without a real q
+      // stores 0 (the selects of compression_direction_of; the same values as per cell)
+      const Real ti = 1 - iso;
+#pragma GCC ivdep
       for (int l = 0; l < n; ++l) {
         const int k = kb + l;
         const Real qq = q(i, j, k);
-        Sym6 t{0, 0, 0, 0, 0, 0};
-        Real jc = 0;
-        if (real[l]) {
-          const Sym6 d{xx[l], yy[l], zz[l], xy[l], xz[l], yz[l]};
+        const Sym6 d{xx[l], yy[l], zz[l], xy[l], xz[l], yz[l]};
+        const Real ev[3] = {e0[l], e1[l], e2[l]};
+        const Sym6 s = compression_direction_of(d, ev);
+        const Real qt = qq * ti, qi = qq * iso;
+        const bool r = real[l] != 0;
+        Q.set(i, j, k,
+              {r ? qt * s.xx + qi : Real(0), r ? qt * s.yy + qi : Real(0),
+               r ? qt * s.zz + qi : Real(0), r ? qt * s.xy : Real(0), r ? qt * s.xz : Real(0),
+               r ? qt * s.yz : Real(0)});
+      }
+      if (conduct) {
+        int cv = 0;
+#pragma GCC ivdep
+        for (int l = 0; l < n; ++l) {
+          const int k = kb + l;
           const Real ev[3] = {e0[l], e1[l], e2[l]};
-          const Sym6 s = compression_direction_of(d, ev);
-          const Real qt = qq * (1 - iso), qi = qq * iso;
-          t = {qt * s.xx + qi, qt * s.yy + qi, qt * s.zz + qi, qt * s.xy, qt * s.xz, qt * s.yz};
-          if (conduct && converging(ev)) {
-            jc = jump_of_q(qq, rho(i, j, k), c(i, j, k), cq, cl);
-            conv = conv || jc > 0;
-          }
+          const Real jc = jump_of_q(q(i, j, k), rho(i, j, k), c(i, j, k), cq, cl);
+          const Real jr = real[l] != 0 && converging(ev) ? jc : Real(0);
+          cj(i, j, k) = jr;
+          cv |= jr > 0 ? 1 : 0;
         }
-        Q.set(i, j, k, t);
-        if (conduct) cj(i, j, k) = jc;
+        conv = conv || cv != 0;
       }
     }
     return true;

@@ -118,9 +118,10 @@ KOKKOS_INLINE_FUNCTION void eigenvalues(const Sym6& d, Real ev[3]) {
 }
 
 // One rotation of `eigenvalues` (pair p, q; r the third index) on n lanes: a lane that has
-// stopped (done) or whose a[p][q] is 0 keeps its values, the others take exactly the scalar
-// loop's operations, as selects (a loop GCC vectorizes).
-KOKKOS_INLINE_FUNCTION void jacobi_rotation_lanes(int n, const bool* done, Real* app, Real* aqq,
+// stopped (done != 0) or whose a[p][q] is 0 keeps its values, the others take exactly the
+// scalar loop's operations, as selects (a loop GCC vectorizes; with a bool mask it did not: GCC
+// 12 finds no vector type for the mix of 1-byte and 8-byte lanes, and left it scalar).
+KOKKOS_INLINE_FUNCTION void jacobi_rotation_lanes(int n, const int* done, Real* app, Real* aqq,
                                                   Real* apq, Real* arp, Real* arq) {
 #pragma GCC ivdep
   for (int l = 0; l < n; ++l) {
@@ -141,19 +142,21 @@ KOKKOS_INLINE_FUNCTION void jacobi_rotation_lanes(int n, const bool* done, Real*
 // `eigenvalues` of n tensors at once (n <= N), lane by lane the same operations in the same
 // order: a lane stops at the sweep where the scalar loop breaks and skips the rotations it
 // skips, so each lane's eigenvalues (a00, a11, a22 at the end) are the scalar ones bit for bit.
-// The tensors come in the six arrays (xx, yy, zz, xy, xz, yz), overwritten; `done` marks the
-// lanes not wanted on entry, and every lane on return.
+// The tensors come in the six arrays (xx, yy, zz, xy, xz, yz), overwritten; `done` (0 or 1)
+// marks the lanes not wanted on entry, and every lane on return.
 template <int N>
 KOKKOS_INLINE_FUNCTION void eigenvalues_lanes(int n, Real (&a00)[N], Real (&a11)[N], Real (&a22)[N],
                                               Real (&a01)[N], Real (&a02)[N], Real (&a12)[N],
-                                              bool (&done)[N]) {
+                                              int (&done)[N]) {
   for (int sweep = 0; sweep < 8; ++sweep) {
     int busy = 0;
+#pragma GCC ivdep
     for (int l = 0; l < n; ++l) {
       const Real off = a01[l] * a01[l] + a02[l] * a02[l] + a12[l] * a12[l];
       const Real diag = a00[l] * a00[l] + a11[l] * a11[l] + a22[l] * a22[l];
-      done[l] = done[l] || !(off > kRealEpsilon * kRealEpsilon * diag);
-      busy += done[l] ? 0 : 1;
+      const int d = done[l] | int(!(off > kRealEpsilon * kRealEpsilon * diag));
+      done[l] = d;
+      busy += 1 - d;
     }
     if (busy == 0) return;
     jacobi_rotation_lanes(n, done, a00, a11, a01, a02, a12);  // p, q, r = 0, 1, 2
@@ -169,13 +172,13 @@ KOKKOS_INLINE_FUNCTION Sym6 compression_direction_of(const Sym6& d, const Real e
   const Real tr = d.xx + d.yy + d.zz;
   const Real den = 3 * lmax - tr;
   const Real scale = mabs(d.xx) + mabs(d.yy) + mabs(d.zz) + mabs(d.xy) + mabs(d.xz) + mabs(d.yz);
-  if (!(den > 64 * kRealEpsilon * scale)) {
-    const Real t = Real(1) / 3;
-    return {t, t, t, 0, 0, 0};
-  }
+  // (selects, not a branch: ViscousTensorColumns calls it in a vector loop; isotropic: S = I / 3)
+  const bool iso = !(den > 64 * kRealEpsilon * scale);
+  const Real t = Real(1) / 3;
   // (divided, not multiplied by 1 / den: a compression along one axis gets exactly 1 there)
-  return {(lmax - d.xx) / den, (lmax - d.yy) / den, (lmax - d.zz) / den,
-          -d.xy / den,         -d.xz / den,         -d.yz / den};
+  return {iso ? t : (lmax - d.xx) / den, iso ? t : (lmax - d.yy) / den,
+          iso ? t : (lmax - d.zz) / den, iso ? Real(0) : -d.xy / den,
+          iso ? Real(0) : -d.xz / den,   iso ? Real(0) : -d.yz / den};
 }
 // S of the strain rate d (components of the symmetric part of the velocity gradient); ev: d's
 // eigenvalues
@@ -213,11 +216,11 @@ KOKKOS_INLINE_FUNCTION bool converging(const Real ev[3]) {
 // speed c: q = r (cq J^2 + cl c J), solved without cancellation (cq = 0 allowed). (Where the
 // two terms saw different jumps, `viscosity` above, J lies between them: the one jump that
 // gives the cell's q.)
+// (selects, not branches: a vector loop of ViscousTensorColumns calls it)
 KOKKOS_INLINE_FUNCTION Real jump_of_q(Real q, Real r, Real c, Real cq, Real cl) {
-  if (!(q > 0) || !(r > 0)) return 0;
   const Real x = q / r, b = cl * c;
   const Real den = b + msqrt(b * b + 4 * cq * x);
-  return den > 0 ? 2 * x / den : Real(0);
+  return q > 0 && r > 0 && den > 0 ? 2 * x / den : Real(0);
 }
 
 // Sums over a cell's four nodes on its high side along axis D less those on its low side, of
@@ -270,13 +273,24 @@ KOKKOS_INLINE_FUNCTION Real ke_fix_floor(Real e) {
 // the face's node pairs apart as kinetic energy (the work a resolved expansion would have done;
 // Hydro::expansion_impulse). Returns the share the receiver takes (1 where the rule does not
 // act).
-KOKKOS_INLINE_FUNCTION Real expansion_share(Real m, Real f, Real m_r, Real v_r, Real gm1,
-                                            Real ratio) {
+// Whether the rule acts (1) or not (0), and where it does the density ratio `base` of the
+// share base^(gm1) (expansion_power); selects of Reals, for a vector loop (remap::cell_flux:
+// GCC 12 vectorizes no select between two tests).
+KOKKOS_INLINE_FUNCTION Real expansion_acts(Real m, Real f, Real m_r, Real v_r, Real ratio,
+                                           Real& base) {
   const Real rho_face = f != 0 ? m / f : Real(0);
   const Real rho_after = (m_r + mabs(m)) / v_r;
-  return rho_face > 0 && rho_after < ratio * rho_face
-             ? MP_KOKKOS_MATH::pow(rho_after / rho_face, gm1)
-             : Real(1);
+  base = rho_after / rho_face;
+  const Real face = rho_face > 0 ? Real(1) : Real(0);
+  return rho_after < ratio * rho_face ? face : Real(0);
+}
+KOKKOS_INLINE_FUNCTION Real expansion_power(Real base, Real gm1) {
+  return MP_KOKKOS_MATH::pow(base, gm1);
+}
+KOKKOS_INLINE_FUNCTION Real expansion_share(Real m, Real f, Real m_r, Real v_r, Real gm1,
+                                            Real ratio) {
+  Real base;
+  return expansion_acts(m, f, m_r, v_r, ratio, base) != 0 ? expansion_power(base, gm1) : Real(1);
 }
 
 }  // namespace mp::hydro
