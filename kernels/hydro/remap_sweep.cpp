@@ -37,7 +37,8 @@ void cell_flux_columns(const int lo[3], const int hi[3], const Field3& vf, const
   for_columns(
       "remap::cell_flux", lo, hi, KOKKOS_LAMBDA(int i, int j, int k0, int k1) {
         // (captured here: nvcc allows an extended lambda no first capture in an if constexpr)
-        (void)gm1, (void)ratio, (void)wall_lo, (void)wall_hi, (void)any_work, (void)o;
+        (void)gm1, (void)ratio, (void)wall_lo, (void)wall_hi, (void)any_work, (void)o, (void)sx,
+            (void)sy, (void)sz;
         const auto vfa = local(vf), pa = local(pre), ra = local(rho), ea = local(e);
         const auto mfa = local(mf), efa = local(ef), xwa = local(xw);
         if constexpr (!Expand) {
