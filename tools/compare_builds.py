@@ -8,6 +8,8 @@ claims "the arithmetic does not change" must show 0 differing values here.
 
   tools/compare_builds.py OLD_EXE NEW_EXE [--cases quick|full] [--only NAME,...] [--json FILE]
 
+A dataset that differs is reported with the count of differing values, the largest |difference|
+and the field's largest finite |value| (the scale to read the difference against).
 Exit status 1 when any case differs or fails to run. The cases: every shipped deck a few cycles,
 the multi-material ones in both layouts, 1 and 2 ranks; with --cases full the issue's set at
 length (perforator 60 cycles; charge_3d, Taylor, Mader, Sedov, triple point further).
@@ -98,7 +100,14 @@ def compare(a_dir, b_dir):
                 same = (x == y) | (np.isnan(x) & np.isnan(y)) if x.dtype.kind == "f" else x == y
                 d = int(np.size(same) - np.count_nonzero(same))
                 if d:
-                    what.append("%s/%s: %d values differ" % (f, k, d))
+                    size = ""
+                    if x.dtype.kind == "f":
+                        diff = np.abs(x.astype(np.float64) - y.astype(np.float64))[~same]
+                        diff = diff[np.isfinite(diff)]
+                        scale = np.abs(x[np.isfinite(x)]).max() if np.isfinite(x).any() else 0.0
+                        if diff.size:
+                            size = ", max |diff| %.3g (field's max |value| %.3g)" % (diff.max(), scale)
+                    what.append("%s/%s: %d values differ%s" % (f, k, d, size))
                     bad += d
     return n, bad, what
 
