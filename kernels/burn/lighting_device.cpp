@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "mesh/halo.hpp"
 
 namespace mp::burn {
 
@@ -303,9 +304,6 @@ void exchange_axis(const Mesh& mesh_, const Labels& lab, const Flags& chg, int d
     using Buf = Kokkos::View<double*, MemSpace>;
     using Plane = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>;
     Buf send[2], recv[2];
-    typename Buf::HostMirror hsend[2], hrecv[2];
-    MPI_Request req[4];
-    int nreq = 0;
     for (int s = 0; s < 2; ++s) {
       if (mesh_.physical_boundary(d, s)) continue;
       send[s] = Buf("burn::lighting_send", count);
@@ -328,26 +326,11 @@ void exchange_axis(const Mesh& mesh_, const Labels& lab, const Flags& chg, int d
             v[5] = double(l.code);
             v[6] = double(chg(ix[0], ix[1], ix[2]));
           });
-      hsend[s] = Kokkos::create_mirror_view(send[s]);
-      hrecv[s] = Kokkos::create_mirror_view(recv[s]);
     }
-    Kokkos::fence();
+    // the halo's messages (device buffers or staged, mesh/halo.hpp), in doubles whatever Real is
+    exchange_buffers<double>(mesh_, d, send, recv, count, kTag);
     for (int s = 0; s < 2; ++s) {
       if (mesh_.physical_boundary(d, s)) continue;
-      Kokkos::deep_copy(hsend[s], send[s]);
-      // tags as exchange_buffers': by the sending side
-      MPI_CHECK(MPI_Irecv(hrecv[s].data(), int(count), MPI_DOUBLE, mesh_.neighbor(d, s),
-                          kTag + 10 * d + 1 - s, mesh_.comm(), &req[nreq++]));
-    }
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      MPI_CHECK(MPI_Isend(hsend[s].data(), int(count), MPI_DOUBLE, mesh_.neighbor(d, s),
-                          kTag + 10 * d + s, mesh_.comm(), &req[nreq++]));
-    }
-    MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
-    for (int s = 0; s < 2; ++s) {
-      if (mesh_.physical_boundary(d, s)) continue;
-      Kokkos::deep_copy(recv[s], hrecv[s]);
       const Buf b = recv[s];
       const int plane = s == 0 ? ng - 1 : ng + nl;
       Kokkos::parallel_for(

@@ -1,6 +1,7 @@
 #include "mesh/halo.hpp"
 
 #include <cstdlib>
+#include <type_traits>
 #include <utility>
 
 #if __has_include(<mpi-ext.h>)
@@ -579,28 +580,40 @@ namespace {
 // The bytes of a message as MPI sees them: the buffer itself where MPI may read and write it
 // (message_in_place), else a host staging array kept between exchanges (grown, never shrunk, so
 // that a cycle allocates nothing), copied from or to the buffer around the message.
+template <class T>
 struct Staging {
-  std::vector<Real> send[2], recv[2];
+  std::vector<T> send[2], recv[2];
 };
-Staging& staging() {
-  static Staging s;
+template <class T>
+Staging<T>& staging() {
+  static Staging<T> s;
   return s;
 }
 
-using HostSlice = Kokkos::View<Real*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
+template <class T>
+using HostSlice = Kokkos::View<T*, Kokkos::HostSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>;
 
-Real* staged(std::vector<Real>& v, long n) {
+template <class T>
+T* staged(std::vector<T>& v, long n) {
   if (long(v.size()) < n) v.resize(std::size_t(n));
   return v.data();
 }
 
 // The first n values of b copied to the host array at h, and back.
-void to_host(Real* h, const Buffer& b, long n) {
-  Kokkos::deep_copy(HostSlice(h, std::size_t(n)), Kokkos::subview(b, std::make_pair(0L, n)));
+template <class T>
+void to_host(T* h, const Kokkos::View<T*, MemSpace>& b, long n) {
+  Kokkos::deep_copy(HostSlice<T>(h, std::size_t(n)), Kokkos::subview(b, std::make_pair(0L, n)));
 }
-void from_host(const Buffer& b, const Real* h, long n) {
+template <class T>
+void from_host(const Kokkos::View<T*, MemSpace>& b, const T* h, long n) {
   Kokkos::deep_copy(Kokkos::subview(b, std::make_pair(0L, n)),
-                    HostSlice(const_cast<Real*>(h), std::size_t(n)));
+                    HostSlice<T>(const_cast<T*>(h), std::size_t(n)));
+}
+
+template <class T>
+MPI_Datatype mpi_type() {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, float>);
+  return std::is_same_v<T, double> ? MPI_DOUBLE : MPI_FLOAT;
 }
 
 }  // namespace
@@ -628,13 +641,14 @@ std::string message_path() {
   return host ? "from the host buffers" : "from the device buffers (CUDA-aware MPI)";
 }
 
-double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buffer recv[2],
-                        long count, int tag_base) {
+template <class T>
+double exchange_buffers(const Mesh& mesh, int d, const Kokkos::View<T*, MemSpace> send[2],
+                        const Kokkos::View<T*, MemSpace> recv[2], long count, int tag_base) {
   Kokkos::fence();  // the pack kernel's values, before MPI or a copy reads them
   const bool in_place = message_in_place();
-  Staging& st = staging();
-  Real* hsend[2] = {nullptr, nullptr};
-  Real* hrecv[2] = {nullptr, nullptr};
+  Staging<T>& st = staging<T>();
+  T* hsend[2] = {nullptr, nullptr};
+  T* hrecv[2] = {nullptr, nullptr};
   MPI_Request req[4];
   int nreq = 0;
   double bytes = 0;
@@ -648,14 +662,14 @@ double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buf
     if (mesh.physical_boundary(d, s)) continue;
     // What arrives from side s was sent by that neighbour towards side 1-s: tag by the
     // sending side so a rank that is its own periodic neighbour pairs messages correctly.
-    MPI_CHECK(MPI_Irecv(hrecv[s], int(count), mpi_real(), mesh.neighbor(d, s),
+    MPI_CHECK(MPI_Irecv(hrecv[s], int(count), mpi_type<T>(), mesh.neighbor(d, s),
                         tag_base + 10 * d + 1 - s, mesh.comm(), &req[nreq++]));
   }
   for (int s = 0; s < 2; ++s) {
     if (mesh.physical_boundary(d, s)) continue;
-    MPI_CHECK(MPI_Isend(hsend[s], int(count), mpi_real(), mesh.neighbor(d, s),
+    MPI_CHECK(MPI_Isend(hsend[s], int(count), mpi_type<T>(), mesh.neighbor(d, s),
                         tag_base + 10 * d + s, mesh.comm(), &req[nreq++]));
-    bytes += double(count) * sizeof(Real);
+    bytes += double(count) * sizeof(T);
   }
   MPI_CHECK(MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE));
   if (!in_place)
@@ -663,12 +677,16 @@ double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buf
       if (!mesh.physical_boundary(d, s)) from_host(recv[s], hrecv[s], count);
   return bytes;
 }
+template double exchange_buffers<float>(const Mesh&, int, const Kokkos::View<float*, MemSpace>[2],
+                                        const Kokkos::View<float*, MemSpace>[2], long, int);
+template double exchange_buffers<double>(const Mesh&, int, const Kokkos::View<double*, MemSpace>[2],
+                                         const Kokkos::View<double*, MemSpace>[2], long, int);
 
 double exchange_sized(const Mesh& mesh, int d, const Buffer send[2], const long send_count[2],
                       Buffer recv[2], int tag_base, const std::string& recv_label) {
   Kokkos::fence();
   const bool in_place = message_in_place();
-  Staging& st = staging();
+  Staging<Real>& st = staging<Real>();
   MPI_Request req[2];
   int nreq = 0;
   double bytes = 0;

@@ -50,9 +50,11 @@ std::string message_path();
 
 // Sends send[s] (count values) to the neighbour rank on side s of axis d and receives recv[s]
 // from it, for each side that is not a physical boundary; tags start at tag_base so that
-// several kinds of exchange cannot pair up wrongly. Returns the bytes sent.
-double exchange_buffers(const Mesh& mesh, int d, const Buffer send[2], const Buffer recv[2],
-                        long count, int tag_base);
+// several kinds of exchange cannot pair up wrongly. Returns the bytes sent. T is float or
+// double (Buffer's Real, or double where a message must carry doubles whatever Real is).
+template <class T>
+double exchange_buffers(const Mesh& mesh, int d, const Kokkos::View<T*, MemSpace> send[2],
+                        const Kokkos::View<T*, MemSpace> recv[2], long count, int tag_base);
 
 // The same for messages whose length varies: send[s] carries send_count[s] values, and what
 // arrives from side s (its length found with MPI_Probe) is received into recv[s], which is
