@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Sets up the dependencies (ci/setup.sh) and configures + builds minipagosa in ./build
-# (or $MINIPAGOSA_BUILD_DIR). Reuses an existing build directory; a second run only rebuilds
-# what changed. Extra arguments go to CMake (e.g. -DMINIPAGOSA_PRECISION=float).
+# (or $MINIPAGOSA_BUILD_DIR; $MINIPAGOSA_BUILD_TARGETS: which targets, default all). Reuses an
+# existing build directory; a second run only rebuilds what changed. Extra arguments go to CMake (e.g. -DMINIPAGOSA_PRECISION=float).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${MINIPAGOSA_BUILD_DIR:-${here}/build}"
@@ -29,7 +29,11 @@ if [ ! -f "${build}/CMakeCache.txt" ] || [ $# -gt 0 ] || [ "${want}" != "${have}
   cmake -S "${here}" -B "${build}" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="${kokkos_root}" \
     "${launcher[@]}" "$@"
 fi
-cmake --build "${build}" -j "${jobs}"
+# MINIPAGOSA_BUILD_TARGETS: the targets to build, space-separated (default: all of them), e.g.
+# `minipagosa` (README command 1) or `tests_all` (the test programs, ci/test.sh)
+targets=()
+for t in ${MINIPAGOSA_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
+cmake --build "${build}" -j "${jobs}" "${targets[@]}"
 if [ "${want}" = 1 ]; then
   echo "[build] ccache for this build: $(ccache --show-stats | grep -E '^ *(Hits|Misses):' |
     tr -s ' ' | paste -sd ';')" >&2

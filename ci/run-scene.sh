@@ -4,13 +4,14 @@
 # run's files there).
 #   bash ci/run-scene.sh [configs/SCENE.yaml] [-- extra minipagosa options]
 # MINIPAGOSA_RANKS (default 2) MPI ranks, MINIPAGOSA_THREADS (default 1) OpenMP threads each.
+# It builds the executable alone (MINIPAGOSA_BUILD_TARGETS="" builds every target).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${MINIPAGOSA_BUILD_DIR:-${here}/build}"
 scene="${1:-${here}/configs/sedov.yaml}"
 shift || true
 [ "${1:-}" = "--" ] && shift
-bash "${here}/ci/build.sh"
+MINIPAGOSA_BUILD_TARGETS="${MINIPAGOSA_BUILD_TARGETS-minipagosa}" bash "${here}/ci/build.sh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 export OMP_NUM_THREADS="${MINIPAGOSA_THREADS:-1}" OMP_PROC_BIND=false
 cd "${here}"
