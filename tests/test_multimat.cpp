@@ -921,6 +921,91 @@ TEST(MultiMaterialLong, ProductsIntoAirDensityWithinTenPercentAt1600Cells) {
   EXPECT_LT(rel(ff.u_mean, ff.u_star), 0.02);
 }
 
+namespace {
+
+// Products into air started from the exact solution at t0 instead of from the membrane at t = 0
+// (docs/studies/2026-12-07-products-air-start-up.md): the deck's regions replaced by the
+// self-similar state at t0, painted cell by cell (the fan's cells at their centre's similarity
+// coordinate, the products cut at the exact contact, the shocked air one box up to the exact
+// shock), run to t = 10 us, so the exact solution of run_products_air applies unchanged (x0 + s
+// t with t = t0 + 10 - t0). What it separates: the start-up, while the fan spans a few cells,
+// from how the scheme carries a resolved JWL fan, contact and strong air shock.
+std::string self_similar_regions(double t0, int cells) {
+  const auto* lib = materials::find_material("pbx9404_products");
+  const exact::IsentropeRiemann rs(materials::make_eos(*lib), lib->rho0, 0.0,
+                                   lib->param("E0") / lib->rho0, 1.225e-3, 0.0, 1e-6, 1.4);
+  const double x0 = 6.0, dx = 14.0 / cells;
+  const double head = x0 + rs.left_head_speed() * t0, contact = x0 + rs.u_star() * t0;
+  const double shock = x0 + rs.right_head_speed() * t0;
+  auto num = [](double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.17g", v);
+    return std::string(b);
+  };
+  auto box = [&](const char* material, double lo, double hi, const exact::EosState& q) {
+    return std::string("{material: ") + material + ", shape: box, lo: [" + num(lo) +
+           ", -1, -1], hi: [" + num(hi) + ", 1, 1], density: " + num(q.rho) +
+           ", energy: " + num(q.e) + ", velocity: [" + num(q.u) + ", 0, 0]}";
+  };
+  std::string r = "regions=[{material: air, shape: all, density: 1.225e-3, pressure: 1.0e-6}, ";
+  r += box("products", -1, head, rs.sample(-1e30));
+  for (int i = 0; i < cells; ++i) {
+    const double lo = std::max(i * dx, head), hi = std::min((i + 1) * dx, contact);
+    if (!(hi > lo)) continue;
+    r += ", " + box("products", lo, hi, rs.sample((0.5 * (lo + hi) - x0) / t0));
+  }
+  r += ", " + box("air", contact, shock, rs.sample(0.5 * (rs.u_star() + rs.right_head_speed())));
+  return r + "]";
+}
+
+// One run from the self-similar start at t0 = 0.3 us (the fan 0.28 cm wide: 8 cells at 400).
+const ProductsAir& products_air_self_similar(int cells) {
+  static std::map<int, ProductsAir> runs;
+  auto it = runs.find(cells);
+  if (it == runs.end()) {
+    const double t0 = 0.3;
+    char end[32];
+    std::snprintf(end, sizeof end, "time.end=%.17g", 10.0 - t0);
+    it = runs.emplace(cells,
+                      run_products_air({"numerics.closure=equal_strain", "numerics.ke_fix=true",
+                                        "mesh.cells=[" + std::to_string(cells) + ",2,2]", end,
+                                        self_similar_regions(t0, cells)}))
+             .first;
+  }
+  return it->second;
+}
+
+}  // namespace
+
+// Issue #53's products-into-air criterion, the expanded products' density within 10 % of exact
+// at 400 cells and falling at 800, from the self-similar start at t0 = 0.3 us (above), with the
+// default numerics. From the membrane the same runs are -30.9 / -17.2 % (the tests above):
+// that error is made in the start-up, while the fan spans fewer than about five cells, and the
+// start from the exact state at 0.3 us leaves almost none of it. This verifies the propagation,
+// not the start from the membrane (the issue's deck), which still misses 10 % at 400 cells.
+// Observed (2026-12-07, double, 1 thread): density -1.0 % at 400 and -0.1 % at 800 cells (bound
+// 10 %, and falling), shocked-air p +0.7 / +0.1 % (bound 2.5 %), star u +0.2 / +0.0 % (bound
+// 2 %), interface -0.1 / -0.2 cells (bound 2 cells); at 200 cells -10.7 %, p +1.3 %, u +1.1 %
+// (not asserted: the fan spans 4 cells at t0 there).
+TEST(MultiMaterial, ProductsIntoAirFromSelfSimilarStart) {
+  const ProductsAir& c = products_air_self_similar(400);
+  const ProductsAir& f = products_air_self_similar(800);
+  expect_products_air_sane(c, "self-similar start, 400 cells");
+  expect_products_air_sane(f, "self-similar start, 800 cells");
+  const double rc = rel(c.rho_products, c.rho_star), rf = rel(f.rho_products, f.rho_star);
+  std::printf(
+      "products-air from the self-similar state at 0.3 us, 400 -> 800 cells: |rho/rho* - 1| "
+      "%.2f %% -> %.2f %%\n",
+      100 * rc, 100 * rf);
+  EXPECT_LT(rc, 0.10);
+  EXPECT_LT(rf, rc);
+  for (const ProductsAir* w : {&c, &f}) {
+    EXPECT_LT(rel(w->p_air, w->p_star), 0.025);
+    EXPECT_LT(rel(w->u_mean, w->u_star), 0.02);
+    EXPECT_LT(std::abs(w->interface - w->contact), 2 * w->dx);
+  }
+}
+
 // A regression pin of a known defect, not a verification (issue #16 open; docs/numerics.md,
 // "Products into air"): the start-up overshoot of the velocity at the rarefaction tail is
 // damped by the remap, and the KE fix returns that loss as heat to the expanded products, which
