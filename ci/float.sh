@@ -3,8 +3,8 @@
 # ./build-float (or ${MINIPAGOSA_BUILD_DIR}-float). One argument, which entries of the fast path:
 #   verification  the accuracy claims, each against its float bound (README command 2 runs
 #                 this: it builds the library and only the programs those entries run)
-#   rest          every other fast-path entry (unit, consistency, pin), after building every
-#                 test program (.ci/run runs this after ci/long.sh)
+#   rest          every other entry but perf and long (unit, consistency, pin), after building
+#                 every test program (.ci/run runs this after ci/long.sh)
 #   all           both
 # The float build has no perf/ programs: timing verdicts and benchmarks run in double.
 set -euo pipefail
@@ -23,6 +23,6 @@ MINIPAGOSA_BUILD_DIR="${build}" MINIPAGOSA_BUILD_TARGETS="${targets}" bash "${he
 built=$(date +%s)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 cd "${build}"
-# the fast path (no perf, no long) restricted to the chosen kinds
+# no perf, no long; the chosen kinds
 ctest --output-on-failure -j "$(nproc)" --timeout 900 "${select[@]}"
 echo "[float] ${which}: build $(( built - start )) s, tests $(( $(date +%s) - built )) s"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# The checks kept out of README command 2's fast path (CTest label long: Noh at 64^3 and 96^3,
-# the third-order remap's convergence and comparisons, products into air at 1600 cells), in the
-# double build that ci/test.sh left in ./build (or $MINIPAGOSA_BUILD_DIR). .ci/run runs it after
-# ci/test.sh; it builds nothing.
+# The checks kept out of README command 2's fast path, in the double build that ci/test.sh left
+# in ./build (or $MINIPAGOSA_BUILD_DIR): the label long (Noh at 64^3 and 96^3, the third-order
+# remap's convergence and comparisons, products into air at 1600 cells) and the kind pin (the
+# regression pins and known misses: they guard against a change, they prove no claim).
+# .ci/run runs it after ci/test.sh; it builds nothing.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$(realpath -m "${MINIPAGOSA_BUILD_DIR:-${here}/build}")"
@@ -13,5 +14,5 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 start=$(date +%s)
 cd "${build}"
-ctest --output-on-failure -j "$(nproc)" --timeout 900 -L long
-echo "[long] long checks finished in $(( $(date +%s) - start )) s"
+ctest --output-on-failure -j "$(nproc)" --timeout 900 -L 'long|pin' -LE perf
+echo "[long] long checks and pins finished in $(( $(date +%s) - start )) s"

@@ -18,9 +18,10 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 t0=$(date +%s)
 cd "${build}"
 # Tests declare how many ranks they use (PROCESSORS); ctest packs them onto the cores. The fast
-# path: every kind but perf (timing verdicts run in ci/perf-check.sh) and long (ci/long.sh,
-# which .ci/run runs after this; README, "Test kinds").
-ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE 'perf|long'
+# path: the kinds verification, consistency and unit; not perf (timing verdicts:
+# ci/perf-check.sh), pin and long (ci/long.sh, which .ci/run runs after this; README, "Test
+# kinds").
+ctest --output-on-failure -j "$(nproc)" --timeout 900 -LE 'perf|long|pin'
 phase "double suite" "${t0}"
 # The single-precision build, so that the float build the README offers keeps building and its
 # accuracy claims hold in float: the library and the verification entries' programs, those
