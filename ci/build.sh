@@ -19,7 +19,10 @@ want=0 launcher=(-UCMAKE_CXX_COMPILER_LAUNCHER -UCMAKE_C_COMPILER_LAUNCHER)
 if [ "${MINIPAGOSA_NO_CCACHE:-0}" != 1 ] && command -v ccache >/dev/null 2>&1; then
   want=1 launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
   export CCACHE_BASEDIR="${here}"
-  ccache --zero-stats >/dev/null
+  # this build's own counts (ci/test.sh runs the float build beside the double one)
+  mkdir -p "${build}"
+  export CCACHE_STATSLOG="$(realpath -m "${build}")/ccache-stats.log"
+  rm -f "${CCACHE_STATSLOG}"
 fi
 have=0
 if grep -q '^CMAKE_CXX_COMPILER_LAUNCHER:.*=ccache$' "${build}/CMakeCache.txt" 2>/dev/null; then
@@ -35,7 +38,7 @@ targets=()
 for t in ${MINIPAGOSA_BUILD_TARGETS:-}; do targets+=(--target "$t"); done
 cmake --build "${build}" -j "${jobs}" "${targets[@]}"
 if [ "${want}" = 1 ]; then
-  echo "[build] ccache for this build: $(ccache --show-stats | grep -E '^ *(Hits|Misses):' |
-    tr -s ' ' | paste -sd ';')" >&2
+  echo "[build] ccache for this build: $( (ccache --show-log-stats 2>/dev/null || true) |
+    grep -E '^ *(Hits|Misses):' | tr -s ' ' | paste -sd ';')" >&2
 fi
 echo "[build] minipagosa built in ${build} against Kokkos at ${kokkos_root}" >&2
