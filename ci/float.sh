@@ -38,6 +38,6 @@ if [ "${phase}" != build ]; then
   export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
   cd "${build}"
   # no perf, no long; the chosen kinds
-  ctest --output-on-failure -j "$(nproc)" --timeout 900 "${select[@]}"
+  ctest --output-on-failure -j "${MINIPAGOSA_CTEST_JOBS:-$(nproc)}" --timeout 900 "${select[@]}"
 fi
 echo "[float] ${which}: build $(( built - start )) s, tests $(( $(date +%s) - built )) s"
