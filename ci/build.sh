@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up the dependencies (ci/setup.sh) and configures + builds minipagosa in ./build
 # (or $MINIPAGOSA_BUILD_DIR; $MINIPAGOSA_BUILD_TARGETS: which targets, default all). Reuses an
-# existing build directory; a second run only rebuilds what changed. Extra arguments go to CMake (e.g. -DMINIPAGOSA_PRECISION=float).
+# existing build directory; a second run only rebuilds what changed. Extra arguments go to
+# CMake (e.g. -DMINIPAGOSA_PRECISION=float).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${MINIPAGOSA_BUILD_DIR:-${here}/build}"
