@@ -16,7 +16,12 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 start=$(date +%s)
 targets=(tests_all)
 grep -q '^MINIPAGOSA_ENABLE_PERF:BOOL=OFF' "${build}/CMakeCache.txt" || targets+=(perf_tools)
-cmake --build "${build}" -j "$(nproc)" --target "${targets[@]}" > /dev/null
+blog="${build}/long-build.log"
+if ! cmake --build "${build}" -j "$(nproc)" --target "${targets[@]}" > "${blog}" 2>&1; then
+  cat "${blog}" >&2
+  echo "ci/long.sh: the build failed (log: ${blog})" >&2
+  exit 1
+fi
 cd "${build}"
 ctest --output-on-failure -j "$(nproc)" --timeout 900 -L 'long|pin' -LE perf
 echo "[long] long checks and pins finished in $(( $(date +%s) - start )) s"
