@@ -20,9 +20,11 @@ namespace tx = mp::exact::taylor;
 namespace {
 
 constexpr double kRadius = 0.5 * tx::kDiameter0;  // cm
-// Cells across the radius of the two resolutions: R/8 runs 1637 cycles of 18x18x56 cells (21 s
-// on 2 ranks; 1670 under the combined step); an R/6 run (1238 cycles of 14x14x42; 1263) costs
-// under half of that.
+// Cells across the radius of the two resolutions: R/8 runs 1637 cycles of 18x18x56 cells (25 s
+// on one rank, one thread; 1670 under the combined step); an R/6 run (1238 cycles of 14x14x42;
+// 1263) costs under half of that. One rank: the same digits as two (the code is rank-count
+// bitwise, test_decomp), in 36 CPU s where two ranks took 51 (2026-12-07; the second rank's
+// MPI waits poll) and held both cores of the CI host.
 constexpr int kCoarse = 6, kFine = 8;
 
 struct TaylorRun {
@@ -125,11 +127,12 @@ TaylorErrors check_model(const char* model, int n) {
 // Zerilli & Armstrong's (1987) copper, the model its authors checked against these cylinders:
 // the target, length and footprint within 5 % of the experiment (the measurement's own
 // rounding is 0.1-0.3 %, tests/exact/taylor_data.hpp), at R/6 and R/8, and the footprint error
-// falling. Observed 2026-12-06 (2 ranks, double and float alike): R/6 L +2.97 %, D -4.91 %; R/8
-// L +3.08 %, D -2.25 %. Bounds: 5 % each (the target; R/6's footprint passes at 0.98 of it), and
-// the R/8 footprint error below 0.8 of the R/6 one (observed 0.46). The length's error does not
-// fall from R/6 to R/8 (+2.97 -> +3.08 %, within its 0.3-point measuring rounding; from R/6 to
-// R/12 it settles near +3.5 %, docs/numerics.md "Taylor anvil"), so only its 5 % is asserted.
+// falling. Observed 2026-12-06 (2 ranks, double and float alike; 1 rank the same, 2026-12-07):
+// R/6 L +2.97 %, D -4.91 %; R/8 L +3.08 %, D -2.25 %. Bounds: 5 % each (the target; R/6's footprint
+// passes at 0.98 of it), and the R/8 footprint error below 0.8 of the R/6 one (observed 0.46). The
+// length's error does not fall from R/6 to R/8 (+2.97 -> +3.08 %, within its 0.3-point measuring
+// rounding; from R/6 to R/12 it settles near +3.5 %, docs/numerics.md "Taylor anvil"), so only its
+// 5 % is asserted.
 TEST(Taylor, ZerilliArmstrongCopperWithinFivePercentAtTwoResolutions) {
   const TaylorErrors c = check_model("zerilli_armstrong", kCoarse);
   const TaylorErrors f = check_model("zerilli_armstrong", kFine);
