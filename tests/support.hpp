@@ -11,6 +11,7 @@
 #include "config/scene.hpp"
 #include "core/error.hpp"
 #include "driver/simulation.hpp"
+#include "mpi_rest.hpp"
 #include "paths.hpp"
 #include "precision.hpp"
 #include "strength/module.hpp"
