@@ -124,7 +124,23 @@ double available_memory() {
   return -1;
 }
 
+// The deck and the options that do not depend on the ranks (check_input, run).
+void check_options(const CommandLine& cl, const Scene& scene) {
+  if (!cl.restart_allow.empty() && cl.restart.empty())
+    throw InputError("--restart-allow needs --restart");
+  for (const std::string& p : cl.restart_allow) {
+    const std::string why = restart_allow_error(p);
+    if (!why.empty()) throw InputError(why);
+  }
+  check_output_path(cl.output.empty() ? scene.output.dir : cl.output, scene);
+}
+
 }  // namespace
+
+void check_input(const CommandLine& cl) {
+  const Deck deck = Deck::load(cl.scene, cl.overrides);
+  check_options(cl, read_scene(deck));
+}
 
 int run(const CommandLine& cl) {
   int rank = 0, nranks = 1;
@@ -134,18 +150,12 @@ int run(const CommandLine& cl) {
     const Deck deck = Deck::load(cl.scene, cl.overrides);
     const Scene scene = read_scene(deck);
     check_ranks(deck, scene, nranks);
+    check_options(cl, scene);
     RunSettings settings;
     settings.output_dir = cl.output.empty() ? scene.output.dir : cl.output;
     settings.quiet = cl.quiet;
     settings.watch_signals = true;
-    if (!cl.restart_allow.empty() && cl.restart.empty())
-      throw InputError("--restart-allow needs --restart");
-    for (const std::string& p : cl.restart_allow) {
-      const std::string why = restart_allow_error(p);
-      if (!why.empty()) throw InputError(why);
-    }
     settings.restart_allow = cl.restart_allow;
-    check_output_path(settings.output_dir, scene);
 
     // Memory up front: estimate, compare with what the node has, before allocating.
     MemoryEstimate estimate;

@@ -16,6 +16,12 @@ struct CommandLine {
   bool overwrite = false;
 };
 
+// The checks of the command line and the deck that need neither MPI nor Kokkos: the deck read
+// and validated, the restart options, the output path's length. Throws InputError. main runs it
+// before MPI starts, so that bad input fails at once (a singleton Open MPI start-up alone takes
+// about 0.4 s); run() runs it again, beside the checks that need the ranks.
+void check_input(const CommandLine& cl);
+
 // Exit codes: 0 completed (end time or max_cycles reached); 2 bad input (nothing written);
 // 3 the run went non-physical (a final dump and the summary are written); 4 another run-time
 // failure (I/O: the message names the file and the reason, MPI); 5 interrupted by SIGTERM or
