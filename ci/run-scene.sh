@@ -21,4 +21,9 @@ extra=(--overwrite)
 for a in "$@"; do
   case "$a" in --overwrite | --restart | --restart=*) extra=() ;; esac
 done
-mpiexec -np "${MINIPAGOSA_RANKS:-2}" --oversubscribe "${build}/minipagosa" "${scene}" "${extra[@]}" "$@"
+# Open MPI binds each rank of a one- or two-rank job to one core: with more than one thread a
+# rank, its threads would share that core, so they are left unbound then.
+bind=()
+[ "${OMP_NUM_THREADS}" != 1 ] && bind=(--bind-to none)
+mpiexec -np "${MINIPAGOSA_RANKS:-2}" --oversubscribe "${bind[@]}" "${build}/minipagosa" "${scene}" \
+  "${extra[@]}" "$@"
