@@ -19,13 +19,11 @@ phase "setup" "${start}"
 # (ci/float.sh rest). MINIPAGOSA_FLOAT=all runs the whole float fast path here, =skip none.
 float="${MINIPAGOSA_FLOAT:-verification}"
 [ "${MINIPAGOSA_SKIP_FLOAT:-0}" = 1 ] && float=skip
-# It compiles at nice 19 from here on, beside the double build and the double suite, on the
-# cores they leave idle: the double build's links and last files, and the suite's tests, which
-# wait on child processes, signals, files and MPI start-up (the suite kept 1.2 of the 2 cores
-# busy on average; bare 2-core VM, 2026-12-07, docs/studies/2026-12-07-build-time.md). At nice
-# 19 the compiler gets what the others leave, and all of it once they are done. (The float
-# tests at the same priority beside the double suite were worse: its 4-rank restart entry,
-# oversubscribed, went 34 -> 250 s.)
+# It compiles at nice 19 from here on, beside the double build and the double suite, on what
+# they leave idle (the double build's links and last files, the suite's waits on child
+# processes and MPI start-up) and on the whole machine once they are done; the float tests
+# run after both (bare 2-core VM, docs/studies/2026-12-07-build-time.md: 811 s in all, 1.91
+# of the 2 cores busy).
 fpid=""
 mkdir -p "${build}"
 flog="${build}/float-build.log"
