@@ -75,7 +75,7 @@ Device device_times(const LightingGrid& g, const std::vector<std::uint8_t>& mask
   MPI_Comm comm;
   MPI_Comm_split(MPI_COMM_WORLD, world_rank() < ranks ? 0 : MPI_UNDEFINED, world_rank(), &comm);
   if (comm == MPI_COMM_NULL) {
-    mp::test::rest_until_all();  // asleep until the construction is done (tests/support.hpp)
+    mp::test::rest_until_all();  // asleep until the construction is done (tests/mpi_rest.hpp)
     return out;
   }
   {
