@@ -382,6 +382,24 @@ TEST(SmoothWave, ThirdOrderUnlimited) {
   EXPECT_LT(t.e[2], s.e[2]);
 }
 
+// The same plateau at 32, 64 and 128 cells, in the fast path (the cases above are `long`, and
+// the fast path's other third-order check, two-material Sod within 5 % of second order, does
+// not notice the slope's two weights swapped): the third-order error below the second-order
+// one at every resolution, and third order's L1 falling at order >= 2.2 from 64 to 128 cells.
+// Observed (double, 2026-12-07): third 9.43e-4, 2.45e-4, 4.26e-5 (orders 1.94, 2.53), second
+// 1.57e-3, 2.89e-4, 4.82e-5 (ratios 0.60, 0.85, 0.88); with the weights swapped, third
+// 1.39e-3, 3.95e-4, 8.17e-5: above second at 64 and 128 cells
+// (docs/studies/2026-12-07-deliberate-breakages.md).
+TEST(SmoothWave, CoarsePlateauThirdBelowSecond) {
+  const int n[3] = {32, 64, 128};
+  const Orders t = wave_orders(n, false, "plateau", "third");
+  const Orders s = wave_orders(n, false, "plateau", "second");
+  for (int q = 0; q < 3; ++q) {
+    EXPECT_LT(t.e[q], s.e[q]) << n[q];
+  }
+  EXPECT_GE(t.o2, 2.2);
+}
+
 TEST(SmoothWave, ThirdOrderUnlimitedAlongTheDiagonal) {
   const int n[3] = {16, 32, 64};
   const Orders t = wave_orders(n, true, "sine", "third", true);
