@@ -165,7 +165,7 @@ std::string run_to_checkpoint(const Case& c, long cycles, MPI_Comm comm, const s
     if (!r.checkpoints.empty()) path = r.checkpoints.back();
     expect_module_state_in_use(sim, c.file);
   }
-  test::rest_until_all();  // the ranks not in comm wait asleep (tests/support.hpp)
+  test::rest_until_all();  // the ranks not in comm wait asleep (tests/mpi_rest.hpp)
   char buf[512] = {0};
   std::snprintf(buf, sizeof buf, "%s", path.c_str());
   MPI_Bcast(buf, sizeof buf, MPI_CHAR, 0, MPI_COMM_WORLD);
