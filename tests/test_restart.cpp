@@ -341,11 +341,10 @@ TEST(ModuleRestart, StressSetsCrossLayoutsBitwise) {
 // at cycles 2, 10 and 40 written on all the ranks, continued on 3, 2 and 1 ranks (the longest
 // leg on the most ranks: 24.1 s where 1, 2, 3 took 26.2), in both layouts, to t = 0.5 us
 // (cycle 69): every field (lighting_time among them, a checkpointed field now) equal to the
-// straight run's, bit for bit. The end is where the
-// rebuilt lighting times show in the flow: with the rebuild put back (2026-12-07), rho and
-// burn_fraction differ in ~7,900 and ~6,100 cells at every leg at t = 0.5; at t = 0.12 (cycle 51)
-// only lighting_time itself differed. (t = 1.2, cycle 99, took 27.6 s on 4 oversubscribed ranks
-// of the 2-core VM; 0.5 takes 20.7 s.)
+// straight run's, bit for bit. The end is where the rebuilt lighting times show in the flow: with
+// the rebuild put back (2026-12-07), rho and burn_fraction differ in ~7,900 and ~6,100 cells at
+// every leg at t = 0.5; at t = 0.12 (cycle 51) only lighting_time itself differed. (t = 1.2, cycle
+// 99, took 27.6 s on 4 oversubscribed ranks of the 2-core VM; 0.5 takes 20.7 s.)
 TEST(ModuleRestart, MaterialSetChangedBeforeTheCheckpointIsBitwiseEqual) {
   const int n = world_size();
   if (n < 3) GTEST_SKIP() << "needs 3 or more ranks (the np4 instance runs it)";

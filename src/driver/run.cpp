@@ -124,6 +124,11 @@ double available_memory() {
   return -1;
 }
 
+// The run's output directory: --output, else the deck's output.dir.
+std::string output_dir(const CommandLine& cl, const Scene& scene) {
+  return cl.output.empty() ? scene.output.dir : cl.output;
+}
+
 // The deck and the options that do not depend on the ranks (check_input, run).
 void check_options(const CommandLine& cl, const Scene& scene) {
   if (!cl.restart_allow.empty() && cl.restart.empty())
@@ -132,7 +137,7 @@ void check_options(const CommandLine& cl, const Scene& scene) {
     const std::string why = restart_allow_error(p);
     if (!why.empty()) throw InputError(why);
   }
-  check_output_path(cl.output.empty() ? scene.output.dir : cl.output, scene);
+  check_output_path(output_dir(cl, scene), scene);
 }
 
 }  // namespace
@@ -152,7 +157,7 @@ int run(const CommandLine& cl) {
     check_ranks(deck, scene, nranks);
     check_options(cl, scene);
     RunSettings settings;
-    settings.output_dir = cl.output.empty() ? scene.output.dir : cl.output;
+    settings.output_dir = output_dir(cl, scene);
     settings.quiet = cl.quiet;
     settings.watch_signals = true;
     settings.restart_allow = cl.restart_allow;
