@@ -59,10 +59,14 @@ Hydro::Hydro(const Mesh& mesh, Halo& halo, const Options& opt, const std::vector
       s_.energy_flux[d] = s_.energy_flux[0];
     }
   }
-  if (eos.size() == 1 && !opt.unsplit && opt.ke_fix && opt.free_expansion > 0 &&
+  if (eos.size() == 1 && opt.ke_fix && opt.free_expansion > 0 &&
       eos[0].kind == eos::kIdealGas) {  // (and no module: add_module)
     expansion_gm1_ = Real(eos[0].params[0] - 1);
     s_.expansion_work = mesh.new_field("expansion_work", N);
+    s_.expansion_work_axis[0] = s_.expansion_work;
+    if (opt.unsplit)
+      for (int d = 1; d < 3; ++d)
+        s_.expansion_work_axis[d] = mesh.new_field(std::string("expansion_work_") + "xyz"[d], N);
     s_.expansion_any = Kokkos::View<int, MemSpace>("expansion_any");
   }
   if (eos.size() > 1) {
@@ -90,6 +94,7 @@ void Hydro::add_module(std::unique_ptr<Module> m) {
   if (expansion_gm1_ > 0) {
     expansion_gm1_ = 0;
     s_.expansion_work = Field3();
+    s_.expansion_work_axis = {};
     s_.expansion_any = Kokkos::View<int, MemSpace>();
   }
   if (const eos::Reactive* r = m->reactive()) {

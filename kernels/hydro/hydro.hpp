@@ -152,9 +152,11 @@ struct State {
   std::array<Field3, 3> vol_flux;
   std::array<Field3, 3> mass_flux, energy_flux;  // through faces normal to x, y, z
   // the free-expansion rule (Options::free_expansion): the internal energy a face's donor pays
-  // beyond what its receiver takes, given to the face's node pairs as kinetic energy (split
-  // sweeps; allocated only where the rule can act)
+  // beyond what its receiver takes, given to the face's node pairs as kinetic energy (allocated
+  // only where the rule can act; the unsplit step keeps one per axis, [0] being expansion_work,
+  // since it pays every axis's work in one cell update; a split sweep uses [0] alone)
   Field3 expansion_work;
+  std::array<Field3, 3> expansion_work_axis;
   Kokkos::View<int, MemSpace> expansion_any;  // set where a sweep's faces did that work
 };
 
@@ -388,6 +390,7 @@ class Hydro {
   Real expansion_gm1_ = 0;
   bool expanded_ = false;  // whether the current sweep's faces did free-expansion work
   bool expansion_worked();
+  void expansion_impulse(int d, const Field3& xw);
   int reflective_face(int d, int s) const;
 };
 

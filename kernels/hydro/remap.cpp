@@ -200,6 +200,7 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
             ez = mesh_.extent(Centering::Cell, 2);
   const StepWeights sw = step.weights();
   const Real ax = sw.ax, ay = sw.ay, az = sw.az;
+  const bool one_axis = int(ax + ay + az) == 1;  // a split sweep (else the unsplit step)
 
   // Cell volume before this step (the Lagrangian volume less the steps already done) and
   // after it; written ahead by the launch before when it could (the corrector for a cycle's
@@ -256,13 +257,15 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     int lo[3] = {0, 0, 0}, hi[3] = {ex, ey, ez};
     lo[d] = fr[0];
     hi[d] = fr[1];
+    // (the unsplit step keeps each axis's free-expansion work apart: one cell update pays all)
+    const Field3 xw = one_axis ? s_.expansion_work : s_.expansion_work_axis[d];
     if (mm_)
       mm_remap_faces(d);
     else
       with_axis(d, [&](auto a) {
         cell_flux_sweep<decltype(a)::value>(
-            lo, hi, vf, pre, rho, e, mf, ef, ord, s_.expansion_work, expansion_gm1_,
-            opt_.free_expansion, reflective_face(d, 0), reflective_face(d, 1), s_.expansion_any);
+            lo, hi, vf, pre, rho, e, mf, ef, ord, xw, expansion_gm1_, opt_.free_expansion,
+            reflective_face(d, 0), reflective_face(d, 1), s_.expansion_any);
       });
     ledger_sweep(d);
     HaloField mfh{mf, Centering::Cell, {1, 1, 1}};
@@ -270,8 +273,9 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     mfh.face_axis = efh.face_axis = d;
     mfh.parity[d] = efh.parity[d] = -1;  // a flux normal to a wall changes sign in the mirror
     // (the free-expansion work is exchanged, paid and given to the nodes only in sweeps where
-    // some rank's faces did any: none in most sweeps of most scenes)
-    expanded_ = expansion_gm1_ > 0 && expansion_worked();
+    // some rank's faces did any: none in most sweeps of most scenes; the unsplit step decides
+    // once its three axes' faces are done, below)
+    expanded_ = one_axis && expansion_gm1_ > 0 && expansion_worked();
     if (expanded_) {
       // (an amount, not a flux: its mirror keeps the sign, and the mirrored flux its donor)
       HaloField xwh{s_.expansion_work, Centering::Cell, {1, 1, 1}};
@@ -280,6 +284,15 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
     } else {
       halo_.exchange({mfh, efh});
     }
+  }
+  if (!one_axis && expansion_gm1_ > 0) {
+    expanded_ = expansion_worked();
+    if (expanded_)
+      for (int d = 0; d < 3; ++d) {
+        HaloField xwh{s_.expansion_work_axis[d], Centering::Cell, {1, 1, 1}};
+        xwh.face_axis = d;
+        halo_.exchange({xwh});
+      }
   }
 
   // Cells: new mass and energy; one ghost layer is updated too, for the dual-mesh masses.
@@ -290,19 +303,33 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
   if (mm_ && !modules_.empty()) mm_carriers();
   for (std::size_t i = 0; i < modules_.size(); ++i)
     modules_[i]->remap(carriers_of(i), axes, pre, ord);
+  // (the unsplit step's free-expansion work, where its faces did any: each face's donor pays
+  // it on top of ef, as AxisCellUpdate)
+  const bool pay = !one_axis && expanded_;
+  const auto xwx = s_.expansion_work_axis[0], xwy = s_.expansion_work_axis[1],
+             xwz = s_.expansion_work_axis[2];
   auto cell_update = [=] KOKKOS_FUNCTION(int i, int j, int k) {
     Real dm = 0, de = 0;
     if (ax > 0) {
       dm += mfx(i, j, k) - mfx(i + 1, j, k);
       de += efx(i, j, k) - efx(i + 1, j, k);
+      if (pay)
+        de -= (mfx(i, j, k) < 0 ? xwx(i, j, k) : Real(0)) +
+              (mfx(i + 1, j, k) > 0 ? xwx(i + 1, j, k) : Real(0));
     }
     if (ay > 0) {
       dm += mfy(i, j, k) - mfy(i, j + 1, k);
       de += efy(i, j, k) - efy(i, j + 1, k);
+      if (pay)
+        de -= (mfy(i, j, k) < 0 ? xwy(i, j, k) : Real(0)) +
+              (mfy(i, j + 1, k) > 0 ? xwy(i, j + 1, k) : Real(0));
     }
     if (az > 0) {
       dm += mfz(i, j, k) - mfz(i, j, k + 1);
       de += efz(i, j, k) - efz(i, j, k + 1);
+      if (pay)
+        de -= (mfz(i, j, k) < 0 ? xwz(i, j, k) : Real(0)) +
+              (mfz(i, j, k + 1) > 0 ? xwz(i, j, k + 1) : Real(0));
     }
     update_cell(rho(i, j, k), e(i, j, k), pre(i, j, k), post(i, j, k), dm, de);
   };
@@ -410,6 +437,10 @@ void Hydro::remap_step(const RemapStep& step, const RemapStep* next) {
       Kokkos::parallel_for("remap::momentum_redo", mesh_.nodes(Region::Owned), op);
       ke_redo_end();
     }
+    // each axis's work to its node pairs along it (each impulse changes that axis's velocity
+    // component only)
+    if (expanded_)
+      for (int d = 0; d < 3; ++d) expansion_impulse(d, s_.expansion_work_axis[d]);
   }
   if (opt_.ke_fix && mm_) {
     mm_ke_fix(next);

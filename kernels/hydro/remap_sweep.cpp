@@ -426,14 +426,18 @@ void impulse_columns(const Field3& rho, const Field3& pre, const Field3& post, c
 }  // namespace
 
 void Hydro::expansion_impulse(int d) {
+  expansion_impulse(d, s_.expansion_work);
+}
+
+void Hydro::expansion_impulse(int d, const Field3& xw) {
   int olo[3], ohi[3];
   mesh_.box(Centering::Node, Region::Owned, olo, ohi);
   const Field3 u0 = d == 0 ? s_.u : d == 1 ? s_.v : s_.w;
   const Field3 u1 = d == 0 ? s_.ub : d == 1 ? s_.vb : s_.wb;
   with_axis(d, [&](auto a) {
-    impulse_columns<decltype(a)::value>(s_.rho, s_.pre_vol, s_.post_vol, s_.node_mass,
-                                        s_.expansion_work, s_.mass_flux[d], s_.ke_loss, u0, u1,
-                                        s_.expansion_any, olo, ohi);
+    impulse_columns<decltype(a)::value>(s_.rho, s_.pre_vol, s_.post_vol, s_.node_mass, xw,
+                                        s_.mass_flux[d], s_.ke_loss, u0, u1, s_.expansion_any, olo,
+                                        ohi);
   });
 }
 
