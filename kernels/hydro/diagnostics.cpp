@@ -393,15 +393,16 @@ Totals Hydro::totals() const {
   const Geometry g = mesh_.geometry();
   const Real vol = g.cell_volume();
   auto rho = s_.rho, e = s_.e, u = s_.u, v = s_.v, w = s_.w;
-  SumN<2> cells;
+  // (compensated sums, core/reduce.hpp: the totals' changes are asserted to round-off)
+  CompensatedSumN<2> cells;
   Kokkos::parallel_reduce(
       "totals::cells", mesh_.cells(Region::Owned),
-      KOKKOS_LAMBDA(int i, int j, int k, SumN<2>& acc) {
+      KOKKOS_LAMBDA(int i, int j, int k, CompensatedSumN<2>& acc) {
         const double mc = double(rho(i, j, k)) * vol;
-        acc.v[0] += mc;
-        acc.v[1] += mc * double(e(i, j, k));
+        acc.add(0, mc);
+        acc.add(1, mc * double(e(i, j, k)));
       },
-      Kokkos::Sum<SumN<2>>(cells));
+      Kokkos::Sum<CompensatedSumN<2>>(cells));
   // Each node once: [ng, ng+nl) on every rank, plus the last node at a physical high face.
   // A node on a physical face carries half a dual cell per such face.
   int hi[3];
@@ -417,10 +418,10 @@ Totals Hydro::totals() const {
             hz = ng + mesh_.owned_cells(2);
   const bool lw0 = lo_wall[0], lw1 = lo_wall[1], lw2 = lo_wall[2];
   const bool hw0 = hi_wall[0], hw1 = hi_wall[1], hw2 = hi_wall[2];
-  SumN<4> nodes;
+  CompensatedSumN<4> nodes;
   Kokkos::parallel_reduce(
       "totals::nodes", Policy3({ng, ng, ng}, {hi[0], hi[1], hi[2]}),
-      KOKKOS_LAMBDA(int i, int j, int k, SumN<4>& acc) {
+      KOKKOS_LAMBDA(int i, int j, int k, CompensatedSumN<4>& acc) {
         double m = 0;
         for (int c = 0; c < 2; ++c)
           for (int b = 0; b < 2; ++b)
@@ -430,16 +431,16 @@ Totals Hydro::totals() const {
         if ((lw1 && j == ly) || (hw1 && j == hy)) m *= 0.5;
         if ((lw2 && k == lz) || (hw2 && k == hz)) m *= 0.5;
         const double uu = u(i, j, k), vv = v(i, j, k), ww = w(i, j, k);
-        acc.v[0] += m * uu;
-        acc.v[1] += m * vv;
-        acc.v[2] += m * ww;
-        acc.v[3] += 0.5 * m * (uu * uu + vv * vv + ww * ww);
+        acc.add(0, m * uu);
+        acc.add(1, m * vv);
+        acc.add(2, m * ww);
+        acc.add(3, 0.5 * m * (uu * uu + vv * vv + ww * ww));
       },
-      Kokkos::Sum<SumN<4>>(nodes));
+      Kokkos::Sum<CompensatedSumN<4>>(nodes));
   double unpaid = 0;
   Kokkos::deep_copy(unpaid, s_.ke_unpaid);
-  double local[7] = {cells.v[0], cells.v[1], nodes.v[0], nodes.v[1],
-                     nodes.v[2], nodes.v[3], unpaid};
+  double local[7] = {cells.value(0), cells.value(1), nodes.value(0), nodes.value(1),
+                     nodes.value(2), nodes.value(3), unpaid};
   double global[7];
   MPI_Allreduce(local, global, 7, MPI_DOUBLE, MPI_SUM, mesh_.comm());
   Totals t;
