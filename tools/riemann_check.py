@@ -80,8 +80,12 @@ def profile(path):
 
 
 def crossing(x, rho, level):
-    """Rightmost x where rho falls through `level`."""
-    i = int(np.where(rho > level)[0].max())
+    """Rightmost x where rho falls through `level`; None where it does not fall through it
+    inside the profile (every cell above it up to the last, or none above it)."""
+    above = np.where(rho > level)[0]
+    if above.size == 0 or int(above.max()) + 1 >= rho.size:
+        return None
+    i = int(above.max())
     return x[i] + (x[i + 1] - x[i]) * (rho[i] - level) / (rho[i] - rho[i + 1])
 
 
@@ -110,9 +114,16 @@ def vacuum(path):
     exf = np.array([sample(left, right, g, (xi - 0.5) / t)[0] for xi in fine])
     out = [f"near-vacuum Sod {x.size} cells t={t:g}: u* {us:.4f}"]
     for level in (1e-2, 1e-4):
-        xe = fine[np.where(exf > level)[0].max()]
+        xe = crossing(fine, exf, level)
         xn = crossing(x, rho, level)
-        out.append(f"rho={level:g} at {xn:.4f} vs {xe:.4f} ({(xn - xe) / h:+.1f} cells)")
+        if xe is None:  # (the exact fan's point at this level has left the box: a wall's)
+            out.append(f"rho={level:g}: the exact front has passed the box's end by t={t:g}, "
+                       "not measured (use an earlier dump)")
+        elif xn is None:
+            out.append(f"rho={level:g}: the run's gas is above it up to the last cell "
+                       f"(exact {xe:.4f})")
+        else:
+            out.append(f"rho={level:g} at {xn:.4f} vs {xe:.4f} ({(xn - xe) / h:+.1f} cells)")
     # node velocities (one more than cells); a node's neighbour density is its lighter cell's
     side = np.concatenate([[rho[0]], np.minimum(rho[:-1], rho[1:]), [rho[-1]]])[: u.size]
     for level in (1e-4, 1e-6):
