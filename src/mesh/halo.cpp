@@ -84,11 +84,7 @@ struct AxisPlan {
   template <int D = -1>
   KOKKOS_INLINE_FUNCTION Real read(int q, int i, int j, int k) const {
     const int a = D >= 0 ? D : d;
-    const int x = a == 0 ? i : a == 1 ? j : k;
-    if (sign[q] < 0)
-      for (int s = 0; s < 2; ++s)
-        if (zero_wall[s] && x == wall[s]) return Real(0);
-    return f[q](i, j, k);
+    return zeroed_at(q, a == 0 ? i : a == 1 ? j : k) ? Real(0) : f[q](i, j, k);
   }
   // Position of (i, j, k) in a side's slab, the slab's first index along d being x0; axis 2
   // (a field's contiguous axis) runs fastest, so that a run along it is a run in the buffer.
@@ -99,7 +95,7 @@ struct AxisPlan {
     idx[a] = (a == 0 ? i : a == 1 ? j : k) - x0;
     return idx[2] + n2 * (idx[1] + n1 * idx[0]);
   }
-  // Whether field q reads as a zeroed wall node at index x along d (read's test).
+  // Whether field q reads as a zeroed wall node at index x along d.
   KOKKOS_INLINE_FUNCTION bool zeroed_at(int q, int x) const {
     if (!(sign[q] < 0)) return false;
     for (int s = 0; s < 2; ++s)
@@ -197,6 +193,7 @@ void pack_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const B
         }
       });
 }
+
 // Packs both sides' send slabs (the axis at compile time: constant index steps).
 void pack(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const Buffer& b0,
           const Buffer& b1, int first_field) {
@@ -216,8 +213,8 @@ void fill_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const B
                const Buffer& b1, int first_field) {
   const int ng = Mesh::ng;
   const bool walls = p.zero_wall[0] || p.zero_wall[1];
-  // Layer t of point (i, j, k) along D (D == 2: t runs over the call's k range), the run of
-  // axis 2 being [k0, k1) (D < 2) or the single k (D == 2) the caller passes as kk.
+  // Layer t along D at (i, j) and the run [k0, k1) of axis 2 (D < 2), or at (i, j) alone
+  // (D == 2: the layer is the point along axis 2, k0 and k1 unused).
   // Every value is what the per-point form wrote: a zeroed wall reads as 0 (read), a mirror
   // is the parity times the value read, an outflow ghost the value read.
   auto layer = [=] KOKKOS_FUNCTION(int t, int i, int j, int k0, int k1) {
@@ -230,7 +227,7 @@ void fill_axis(const Mesh& mesh, const HaloField& f0, const AxisPlan& p, const B
       for (int q = 0; q < p.n; ++q)
         if (p.sign[q] < 0) {
           const auto F = local(p.f[q]);
-          for (int k = a; k < e; ++k) F(idx[0], idx[1], D == 2 ? idx[2] : k) = 0;
+          for (int k = a; k < e; ++k) F(idx[0], idx[1], k) = 0;
         }
       return;
     }
@@ -365,11 +362,7 @@ struct Local {
     return p.node ? p.wall[s] - dir * (layer + 1) : p.wall[s] - dir * layer;
   }
   // Field q read at source index src along d is a zeroed wall node.
-  KOKKOS_INLINE_FUNCTION bool zeroed(int d, int src, int q) const {
-    const AxisPlan& p = a[d];
-    return p.sign[q] < 0 &&
-           ((p.zero_wall[0] && src == p.wall[0]) || (p.zero_wall[1] && src == p.wall[1]));
-  }
+  KOKKOS_INLINE_FUNCTION bool zeroed(int d, int src, int q) const { return a[d].zeroed_at(q, src); }
   // One column (i, j): the maps of axes x and y once, then the points along z.
   KOKKOS_INLINE_FUNCTION void operator()(int i, int j) const {
     bool g0, g1, m0, m1;
