@@ -61,11 +61,13 @@ def outside(p, q, pad, lo, hi):
     return False
 
 
-def cut_deck(box, end):
-    """configs/perforator.yaml cut to the study's box, as YAML text."""
+def cut_deck(box, end, lo_yz=(0.0, Z_LO), hi_yz=(Y_HI, Z_HI), scene="perforator_top",
+             interval=1.0, ledger=False):
+    """configs/perforator.yaml cut to the box x in `box`, (y, z) from lo_yz to hi_yz, as YAML text:
+    every region and point detonator wholly outside it dropped, every other value the deck's."""
     with open(os.path.join(ROOT, "configs", "perforator.yaml")) as f:
         deck = yaml.safe_load(f)
-    lo, hi = [box[0], 0.0, Z_LO], [box[1], Y_HI, Z_HI]
+    lo, hi = [box[0], *lo_yz], [box[1], *hi_yz]
     deck["regions"] = [r for r in deck["regions"]
                        if "base" not in r or not outside(r["base"], r["top"], r["radius"], lo, hi)]
     for m in deck["materials"]:
@@ -73,10 +75,12 @@ def cut_deck(box, end):
             m["burn"]["detonators"] = [d for d in m["burn"]["detonators"]
                                        if d["type"] != "point" or not outside(d["at"], d["at"], 0,
                                                                               lo, hi)]
-    deck["scene"] = "perforator_top"
+    deck["scene"] = scene
     deck["mesh"]["lo"], deck["mesh"]["hi"] = lo, hi
     deck["time"]["end"] = end
-    deck["output"] = {"dir": "output/perforator_top", "interval": 1.0, "log_every": 100}
+    deck["output"] = {"dir": f"output/{scene}", "interval": interval, "log_every": 100}
+    if ledger:
+        deck["output"]["mass_ledger"] = True
     return yaml.safe_dump(deck, sort_keys=False)
 
 
@@ -154,17 +158,14 @@ def richardson(hs, qs):
     return res
 
 
-def run_one(a, deck_path, zone, order, work, variant=None):
-    name, sets = variant if variant else ("default", [])
-    out = os.path.join(work, f"z{zone:g}_{order}" + ("" if not variant else f"_{name}"))
+def execute(a, deck_path, zone, order, out, sets=()):
+    """One run of the cut deck at `zone` and advection `order` into `out` (a.exe, a.threads):
+    its cost (cells, cycles, wall and core-hours from summary.json, peak resident memory from
+    /usr/bin/time)."""
     cmd = ["/usr/bin/time", "-f", "%M", a.exe, deck_path, "--set", f"mesh.zone={zone:g}",
            "--set", f"numerics.advection={order}", "-o", out, "--overwrite", "-q"]
     for kv in sets:
         cmd += ["--set", kv]
-    done = os.path.join(out, "study_run.json")
-    if a.reuse and os.path.exists(done):
-        with open(done) as f:
-            return json.load(f)
     env = dict(os.environ, OMP_NUM_THREADS=str(a.threads))
     t0 = time.time()
     p = subprocess.run(cmd, env=env, capture_output=True, text=True)
@@ -174,17 +175,34 @@ def run_one(a, deck_path, zone, order, work, variant=None):
     rss_kb = int(p.stderr.strip().splitlines()[-1])
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
+    return {"zone": zone, "order": order, "sets": list(sets), "cells": s["cells"],
+            "cycles": s["cycles"], "wall_seconds": s["wall_seconds"], "process_seconds": wall,
+            "core_hours": s["wall_seconds"] * a.threads / 3600.0, "peak_rss_mib": rss_kb / 1024.0,
+            "load_average": os.getloadavg()[0]}
+
+
+def run_one(a, deck_path, zone, order, work, variant=None):
+    name, sets = variant if variant else ("default", [])
+    out = os.path.join(work, f"z{zone:g}_{order}" + ("" if not variant else f"_{name}"))
+    done = os.path.join(out, "study_run.json")
+    if a.reuse and os.path.exists(done):
+        with open(done) as f:
+            return json.load(f)
+    res = execute(a, deck_path, zone, order, out, sets)
     runs = dumps.list_dumps(TOOL, out)
-    at = {}
-    for t in a.times:
-        at[f"{t:g}"] = measure_at(out, runs, t)
-    res = {"zone": zone, "order": order, "variant": name, "sets": sets, "cells": s["cells"],
-           "cycles": s["cycles"], "wall_seconds": s["wall_seconds"], "process_seconds": wall,
-           "core_hours": s["wall_seconds"] * a.threads / 3600.0, "peak_rss_mib": rss_kb / 1024.0,
-           "at": at, "load_average": os.getloadavg()[0]}
+    res["variant"] = name
+    res["at"] = {f"{t:g}": measure_at(out, runs, t) for t in a.times}
     with open(done, "w") as f:
         json.dump(res, f, indent=1)
     return res
+
+
+def cost_cells(r):
+    """A run's cost (`execute`) as Markdown table cells: cells, cycles, wall (s), core-hours and
+    peak RSS (MiB)."""
+    c = r["cells"]
+    return (f"{c[0]}×{c[1]}×{c[2]} = {c[0] * c[1] * c[2]:,} | {r['cycles']} | "
+            f"{r['wall_seconds']:.1f} | {r['core_hours']:.4f} | {r['peak_rss_mib']:.0f}")
 
 
 QUANTITIES = [("tip_x", "tip x (cm)", "{:.3f}"), ("tip_u", "tip u (cm/us)", "{:.3f}"),
@@ -248,10 +266,7 @@ def main():
              "| order | zone (cm) | cells | cycles | wall (s) | core-hours | peak RSS (MiB) |",
              "|---|---|---|---|---|---|---|"]
     for r in results:
-        c = r["cells"]
-        lines.append(f"| {r['order']} | {r['zone']:g} | {c[0]}×{c[1]}×{c[2]} = "
-                     f"{c[0] * c[1] * c[2]:,} | {r['cycles']} | {r['wall_seconds']:.1f} | "
-                     f"{r['core_hours']:.4f} | {r['peak_rss_mib']:.0f} |")
+        lines.append(f"| {r['order']} | {r['zone']:g} | {cost_cells(r)} |")
     for t in results[0]["at"]:
         lines += ["", f"At t = {t} us:", "",
                   "| order | zone | " + " | ".join(n for _, n, _ in QUANTITIES) + " |",

@@ -161,7 +161,8 @@ def measure(d, a, name, z0, direction, mouth, walls, cut):
     row["jet_length"] = float(x[on_row].max() - x[on_row].min() + d.spacing[0]) \
         if on_row.size else 0.0
     mask = (copper > 0.5) & near[:, :, None]
-    row.update(tip_x=None, tip_speed_cell=None, beyond_mouth=None, steel_ahead=None)
+    row.update(tip_x=None, tip_speed_cell=None, beyond_mouth=None, steel_ahead=None,
+               jet_speed_behind_tip=None)
     row["events"] = {}
     if mask.any():
         ks, js, iis = np.nonzero(mask)
@@ -169,6 +170,12 @@ def measure(d, a, name, z0, direction, mouth, walls, cut):
         kt, jt, it = ks[n], js[n], iis[n]
         row["tip_x"] = float(x[it])
         row["tip_speed_cell"] = float(direction * ux[kt, jt, it])
+        # the jet feeding the tip: the fastest copper (fraction > 0.5) on the axis row within
+        # --behind of the tip, behind it
+        back = (copper[k, j, :] > 0.5) & (direction * (x[it] - x) >= 0) & \
+            (direction * (x[it] - x) <= a.behind)
+        row["jet_speed_behind_tip"] = float((direction * ux[k, j, :])[back].max()) \
+            if back.any() else None
         row["beyond_mouth"] = float(direction * (x[it] - mouth))
         cap = steel_ahead(steel, kt, jt, it, 1 if direction > 0 else -1)
         row["steel_ahead"] = cap
@@ -213,13 +220,15 @@ def fmt(v, f="{:.3f}"):
     return "—" if v is None else f.format(v + 0.0)
 
 
-def main():
+def parser():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("run", help="the run's output directory")
     ap.add_argument("-o", "--output", default=None, help="prefix of the .json and .md")
     ap.add_argument("--radius", type=float, default=None,
                     help="probe radius about the axis, cm (default: one zone)")
     ap.add_argument("--cut", type=float, default=0.2, help="jet speed cut, cm/us (default 0.2)")
+    ap.add_argument("--behind", type=float, default=1.0,
+                    help="how far behind the tip the jet feeding it is sought, cm (default 1)")
     ap.add_argument("--carrier-x", type=float, default=-4.2164)
     ap.add_argument("--carrier-inner", type=float, default=1.5494)
     ap.add_argument("--carrier-outer", type=float, default=1.9939)
@@ -228,10 +237,24 @@ def main():
     ap.add_argument("--charges", choices=("both", "top", "bottom"), default="both",
                     help="which charges to probe (a cut-down deck such as "
                          "perf/studies/perforator_top_across_well.yaml holds one)")
-    a = ap.parse_args()
+    return ap
+
+
+def options(**kw):
+    """perforator_check's options as the command line's defaults, with `kw` changed (for a
+    study that measures its runs with `analyse`)."""
+    a = parser().parse_args(["."])
+    for k, v in kw.items():
+        setattr(a, k, v)
+    return a
+
+
+def analyse(run, a):
+    """Every dump of `run` measured per charge (a.charges): (result, rows, runs, charges), the
+    result as this tool's JSON."""
     charges = [c for c in CHARGES if a.charges == "both" or c[0].startswith(a.charges)]
 
-    runs = dumps.list_dumps(TOOL, a.run)
+    runs = dumps.list_dumps(TOOL, run)
     rows = {name: [] for name, *_ in charges}
     zone = None
     for t, cycle, path in runs:
@@ -242,8 +265,8 @@ def main():
                                       a.cut))
     theory = shaped_charge.predict(cut=a.cut)
     theory.pop("elements")
-    result = {"run": os.path.abspath(a.run), "zone_cm": zone, "speed_cut": a.cut,
-              "last_time": runs[-1][0], "theory": theory, "mass_ledger": ledger(a.run),
+    result = {"run": os.path.abspath(run), "zone_cm": zone, "speed_cut": a.cut,
+              "last_time": runs[-1][0], "theory": theory, "mass_ledger": ledger(run),
               "charges": {}}
     for name, z0, direction, mouth in charges:
         r = rows[name]
@@ -253,6 +276,27 @@ def main():
                 dt = r[n]["time"] - r[n - 1]["time"]
                 if dt > 0:
                     r[n]["tip_speed_dxdt"] = direction * (r[n]["tip_x"] - r[n - 1]["tip_x"]) / dt
+        # the hydrodynamic check: between dumps with the tip in one target (the rock, or the
+        # casing's steel), the tip's advance against u = v / (1 + sqrt(rho_t / rho_jet)) of the
+        # jet speed v behind the tip (the mean of the two dumps')
+        wall = Walls(a, direction)
+        for n in range(1, len(r)):
+            p, c = r[n - 1], r[n]
+            c["penetration"] = None
+            if c["tip_speed_dxdt"] is None or p["jet_speed_behind_tip"] is None \
+                    or c["jet_speed_behind_tip"] is None:
+                continue
+            if p["events"].get("rock"):
+                target = "quartz"
+            elif direction * (p["tip_x"] - wall.x["casing_inner"]) >= 0 and \
+                    direction * (c["tip_x"] - wall.x["casing_outer"]) <= 0:
+                target = "steel"
+            else:
+                continue
+            v = 0.5 * (p["jet_speed_behind_tip"] + c["jet_speed_behind_tip"])
+            c["penetration"] = {"target": target, "speed": c["tip_speed_dxdt"], "jet_speed": v,
+                                "theory": v * shaped_charge.penetration_speed_ratio(target)}
+        r[0]["penetration"] = None
         first = {e: next((x["time"] for x in r if x["events"].get(e)), None) for e in EVENTS}
         entry = next((x for x in r if x["events"].get("rock")), None)
         last = r[-1]
@@ -272,13 +316,34 @@ def main():
                                            "casing_entrance", "casing_exit", "carrier_hole",
                                            "copper_beyond")},
             "birkhoff": None,
+            # the tip's advance through each target against the hydrodynamic speed, summed over
+            # the dumps (cm): the depth the run made and the depth u = v / (1 + sqrt(rho_t /
+            # rho_jet)) of its own jet would have made in the same intervals
+            "penetration_check": {},
         }
+        for n in range(1, len(r)):
+            pc = r[n]["penetration"]
+            if pc:
+                dt = r[n]["time"] - r[n - 1]["time"]
+                acc = summary["penetration_check"].setdefault(
+                    pc["target"], {"run_depth": 0.0, "theory_depth": 0.0, "intervals": 0})
+                acc["run_depth"] += pc["speed"] * dt
+                acc["theory_depth"] += pc["theory"] * dt
+                acc["intervals"] += 1
         if entry is not None:
             summary["birkhoff"] = {
                 "at_time": entry["time"], "jet_length": entry["jet_length"],
                 "depth_quartz": shaped_charge.birkhoff_depth(entry["jet_length"], "quartz"),
                 "crater_depth_final": last["crater_depth"]}
         result["charges"][name] = {"summary": summary, "history": r}
+
+    return result, rows, runs, charges
+
+
+def main():
+    a = parser().parse_args()
+    result, rows, runs, charges = analyse(a.run, a)
+    zone, theory = result["zone_cm"], result["theory"]
 
     lines = [f"# Perforator: {a.run}", "",
              f"zone {zone:g} cm, dumps to t = {runs[-1][0]:g} us, jet speed cut {a.cut:g} cm/us. "
@@ -320,23 +385,36 @@ def main():
               f"{theory['jet_momentum_above_cut']:.4f} g cm/us."]
     for name, *_ in charges:
         b = result["charges"][name]["summary"]["birkhoff"]
-        if b:
+        if b and b["jet_length"] == 0:
+            lines.append(f"- {name}: no copper faster than {a.cut:g} cm/us on the axis row on "
+                         f"entering the rock (t = {b['at_time']:g} us): no Birkhoff depth from "
+                         "the jet's length (see the interval check below).")
+        elif b:
             lines.append(f"- {name}: fast jet {b['jet_length']:.2f} cm long on entering the rock "
                          f"(t = {b['at_time']:g} us): Birkhoff depth {b['depth_quartz']:.2f} cm; "
                          f"crater at the end {fmt(b['crater_depth_final'], '{:.2f}')} cm.")
+    for name, *_ in charges:
+        for target, pc in result["charges"][name]["summary"]["penetration_check"].items():
+            lines.append(f"- {name}, through the {target}: the tip advanced "
+                         f"{pc['run_depth']:.2f} cm "
+                         f"over {pc['intervals']} dump intervals, where u = v / (1 + sqrt(rho_t / "
+                         f"rho_jet)) of the jet behind it (within {a.behind:g} cm) gives "
+                         f"{pc['theory_depth']:.2f} cm.")
     if result["mass_ledger"]:
         lines += ["", "| material | mass at start (g) | at end (g) | lost through the "
                   "boundaries |", "|---|---|---|---|"]
         for m, v in result["mass_ledger"].items():
             lines.append(f"| {m} | {v['start']:.6g} | {v['end']:.6g} | "
                          f"{100 * v['lost_relative']:.3f} % |")
-    lines += ["", "| t (us) | charge | tip x (cm) | tip speed dx/dt | tip cell u | steel ahead "
-              "(cells) | jet mass (g) | jet length (cm) |", "|---|---|---|---|---|---|---|---|"]
+    lines += ["", "| t (us) | charge | tip x (cm) | tip speed dx/dt | tip cell u | jet behind the "
+              "tip | steel ahead (cells) | jet mass (g) | jet length (cm) |",
+              "|---|---|---|---|---|---|---|---|---|"]
     for n in range(len(runs)):
         for name, *_ in charges:
             r = rows[name][n]
             lines.append(f"| {r['time']:g} | {name} | {fmt(r['tip_x'])} | "
                          f"{fmt(r['tip_speed_dxdt'])} | {fmt(r['tip_speed_cell'])} | "
+                         f"{fmt(r['jet_speed_behind_tip'])} | "
                          f"{fmt(r['steel_ahead'], '{:.2f}')} | {r['jet_mass']:.4f} | "
                          f"{r['jet_length']:.2f} |")
     text = "\n".join(lines) + "\n"

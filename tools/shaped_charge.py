@@ -123,6 +123,15 @@ def birkhoff_depth(length, target, jet="copper"):
     return length * math.sqrt(DENSITY[jet] / DENSITY[target])
 
 
+def penetration_speed_ratio(target, jet="copper"):
+    """The hydrodynamic penetration speed over the jet's speed, u / v = 1 / (1 + sqrt(rho_target /
+    rho_jet)): Bernoulli's balance at the stagnation point in the frame of the crater's bottom,
+    rho_jet (v - u)^2 = rho_target u^2 (Birkhoff et al. 1948, the same theory as birkhoff_depth:
+    a jet of length l at constant v is used up in l / (v - u), in which the crater grows u times
+    that, l sqrt(rho_jet / rho_target))."""
+    return 1.0 / (1.0 + math.sqrt(DENSITY[target] / DENSITY[jet]))
+
+
 def collapse_speeds(run, apex_x=-4.9814, axis_z=1.27, bins=8, t_max=8.0):
     """The top charge's liner in a run (its dumps up to t_max): per axial band of the liner
     (distance from the outer apex, cm), the largest over the dumps of the 90th percentile of its
