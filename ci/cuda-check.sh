@@ -47,6 +47,13 @@ version=$(sed -n 's/^set(PACKAGE_VERSION "\(.*\)")$/\1/p' "${config}/KokkosConfi
 echo "[cuda-check] Kokkos ${version} (CUDA) at ${kokkos}; $(nvcc --version | grep -o "release [0-9.]*" | head -n 1)"
 
 start=$(date +%s)
+# a build directory configured against another Kokkos (its cache names another compiler) is
+# configured afresh: CMake refuses to change the compiler of an existing cache
+if [ -f "${build}/CMakeCache.txt" ] &&
+  ! grep -qx "CMAKE_CXX_COMPILER:[A-Z]*=${wrapper}" "${build}/CMakeCache.txt"; then
+  echo "[cuda-check] ${build} was configured with another compiler: configuring it afresh"
+  rm -rf "${build}/CMakeCache.txt" "${build}/CMakeFiles"
+fi
 if [ ! -f "${build}/CMakeCache.txt" ] || [ $# -gt 0 ]; then
   cmake -S "${here}" -B "${build}" -DCMAKE_BUILD_TYPE=Release -DKokkos_ROOT="${kokkos}" \
     -DCMAKE_CXX_COMPILER="${wrapper}" "$@"
