@@ -85,9 +85,11 @@ void MaterialState::resize_pool(CompactDev& c, int slots) const {
 }
 
 std::vector<double> MaterialState::material_masses() const {
+  // (compensated sums, as the conservation totals' (core/reduce.hpp): a material's mass over
+  // millions of cells to a rounding, so that its change is what left through the faces)
   const Geometry g = mesh_.geometry();
   const double vol = g.cell_volume();
-  SumN<kMaxMaterials> sum;
+  CompensatedSumN<kMaxMaterials> sum;
   const int ng = Mesh::ng;
   const std::array<int, 3> lo{ng, ng, ng}, hi = mesh_.owned_end();
   if (kind_ == LayoutKind::Dense) {
@@ -95,41 +97,43 @@ std::vector<double> MaterialState::material_masses() const {
     const int nmat = nmat_;
     Kokkos::parallel_reduce(
         "matter::masses", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-        KOKKOS_LAMBDA(int i, int j, int k, SumN<kMaxMaterials>& acc) {
+        KOKKOS_LAMBDA(int i, int j, int k, CompensatedSumN<kMaxMaterials>& acc) {
           for (int m = 0; m < nmat; ++m)
-            acc.v[m] += double(d.alpha(m, i, j, k)) * double(d.rho(m, i, j, k)) * vol;
+            acc.add(m, double(d.alpha(m, i, j, k)) * double(d.rho(m, i, j, k)) * vol);
         },
-        Kokkos::Sum<SumN<kMaxMaterials>>(sum));
+        Kokkos::Sum<CompensatedSumN<kMaxMaterials>>(sum));
   } else {
     const CompactDev d = compact_;
     auto rho = rho_;
-    SumN<kMaxMaterials> pure, mixed;
+    CompensatedSumN<kMaxMaterials> pure, mixed;
     Kokkos::parallel_reduce(
         "matter::masses[pure]", Policy3({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}),
-        KOKKOS_LAMBDA(int i, int j, int k, SumN<kMaxMaterials>& acc) {
+        KOKKOS_LAMBDA(int i, int j, int k, CompensatedSumN<kMaxMaterials>& acc) {
           const int m = d.mat(i, j, k);
-          if (m >= 0) acc.v[m] += double(rho(i, j, k)) * vol;
+          if (m >= 0) acc.add(m, double(rho(i, j, k)) * vol);
         },
-        Kokkos::Sum<SumN<kMaxMaterials>>(pure));
+        Kokkos::Sum<CompensatedSumN<kMaxMaterials>>(pure));
     const int ey = ey_, ez = ez_;
     // (the box as a Kokkos::Array: std::array's operator[] is a host function to nvcc)
     const Kokkos::Array<int, 3> blo{lo[0], lo[1], lo[2]}, bhi{hi[0], hi[1], hi[2]};
     Kokkos::parallel_reduce(
         "matter::masses[mixed]", Policy1(0, d.nmixed),
-        KOKKOS_LAMBDA(int r, SumN<kMaxMaterials>& acc) {
+        KOKKOS_LAMBDA(int r, CompensatedSumN<kMaxMaterials>& acc) {
           const int lin = d.mixed(r);
           const int k = lin % ez, j = (lin / ez) % ey, i = lin / (ez * ey);
           if (i < blo[0] || i >= bhi[0] || j < blo[1] || j >= bhi[1] || k < blo[2] || k >= bhi[2])
             return;
           const int f = d.first(i, j, k);
           for (int q = f; q < f + d.nm(i, j, k); ++q)
-            acc.v[d.smat(q)] += double(d.salpha(q)) * double(d.srho(q)) * vol;
+            acc.add(d.smat(q), double(d.salpha(q)) * double(d.srho(q)) * vol);
         },
-        Kokkos::Sum<SumN<kMaxMaterials>>(mixed));
-    for (int m = 0; m < kMaxMaterials; ++m) sum.v[m] = pure.v[m] + mixed.v[m];
+        Kokkos::Sum<CompensatedSumN<kMaxMaterials>>(mixed));
+    sum = pure;
+    sum += mixed;
   }
-  std::vector<double> out(nmat_);
-  MPI_Allreduce(sum.v, out.data(), nmat_, MPI_DOUBLE, MPI_SUM, mesh_.comm());
+  std::vector<double> mine(nmat_), out(nmat_);
+  for (int m = 0; m < nmat_; ++m) mine[m] = sum.value(m);
+  MPI_Allreduce(mine.data(), out.data(), nmat_, MPI_DOUBLE, MPI_SUM, mesh_.comm());
   return out;
 }
 
