@@ -41,6 +41,7 @@ sys.path.insert(0, os.path.join(ROOT, "perf"))
 import dumps  # noqa: E402
 import perforator_check  # noqa: E402
 import perforator_study  # noqa: E402
+import shaped_charge  # noqa: E402
 
 TOOL = "perforator_penetration"
 # per charge: perforator_check's name, the box's x extent, its (y, z) corners
@@ -159,7 +160,7 @@ def main():
     hs = [r["zone"] for r in results]
     conv = {k: perforator_study.richardson(hs, [r["quantities"][k] for r in results])
             for k, *_ in QUANTITIES}
-    theory = perforator_check.shaped_charge.predict(cut=check.cut)
+    theory = shaped_charge.predict(cut=check.cut)
     theory.pop("elements")
     doc = {"charge": charge, "box_x": a.box, "box_yz": [lo_yz, hi_yz], "sets": a.set,
            "end": a.end, "order": a.order,

@@ -256,13 +256,13 @@ def analyse(run, a):
 
     runs = dumps.list_dumps(TOOL, run)
     rows = {name: [] for name, *_ in charges}
+    walls = {name: Walls(a, direction) for name, _, direction, _ in charges}
     zone = None
     for t, cycle, path in runs:
         d = dumps.Dump(TOOL, path)
         zone = float(d.spacing.max())
         for name, z0, direction, mouth in charges:
-            rows[name].append(measure(d, a, name, z0, direction, mouth, Walls(a, direction),
-                                      a.cut))
+            rows[name].append(measure(d, a, name, z0, direction, mouth, walls[name], a.cut))
     theory = shaped_charge.predict(cut=a.cut)
     theory.pop("elements")
     result = {"run": os.path.abspath(run), "zone_cm": zone, "speed_cut": a.cut,
@@ -279,7 +279,7 @@ def analyse(run, a):
         # the hydrodynamic check: between dumps with the tip in one target (the rock, or the
         # casing's steel), the tip's advance against u = v / (1 + sqrt(rho_t / rho_jet)) of the
         # jet speed v behind the tip (the mean of the two dumps')
-        wall = Walls(a, direction)
+        wall = walls[name]
         for n in range(1, len(r)):
             p, c = r[n - 1], r[n]
             c["penetration"] = None
